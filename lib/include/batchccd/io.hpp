@@ -1,0 +1,90 @@
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "batchccd/batch.hpp"
+#include "batchccd/query.hpp"
+
+// Readers for the data formats of DESIGN.md §5. Every reader validates what
+// it reads and throws InputError naming the file, the line (0 when the
+// problem has no line, e.g. a missing file or a binary PLY body) and the
+// problem; none crashes on malformed input.
+namespace batchccd {
+
+class InputError : public std::runtime_error {
+ public:
+  InputError(std::string file, long line, const std::string& problem);
+  const std::string& file() const { return file_; }
+  long line() const { return line_; }
+
+ private:
+  std::string file_;
+  long line_;
+};
+
+// x_num / x_den as the exact double it denotes. Both are decimal integers of
+// any length (the denominator positive). Throws std::invalid_argument when the
+// text is not an integer or the value is not exactly a finite double.
+double exact_double_from_rational(std::string_view numerator,
+                                  std::string_view denominator);
+
+// The kind a path names: "vertex-face" or a "vf" word means vertex_face,
+// "edge-edge" or an "ee" word edge_edge (the last such component wins).
+std::optional<Kind> kind_from_path(const std::filesystem::path& path);
+
+struct QueryFile {
+  std::string path;
+  Kind kind = Kind::vertex_face;
+  std::vector<Query> queries;
+  std::optional<std::vector<bool>> truth;  // one per query, when the file has it
+};
+
+// Query CSV: 8 rows a query; 7 columns x_num,x_den,y_num,y_den,z_num,z_den,truth
+// (truth 0/1, equal on the query's 8 rows) or 6 columns without truth. Commas
+// with or without a space after them.
+QueryFile read_query_csv(const std::filesystem::path& path, Kind kind);
+
+// Ground truth: a JSON array of booleans (true/false, or 0/1), or one 0/1 a line.
+std::vector<bool> read_truth(const std::filesystem::path& path);
+
+struct PlyMesh {
+  Eigen::MatrixXd vertices;  // n x 3
+  Eigen::MatrixXi faces;     // m x 3 (triangles only)
+};
+
+// PLY in any standard encoding: ascii, binary_little_endian,
+// binary_big_endian; x/y/z of any numeric type among other vertex properties;
+// faces as a list property named vertex_indices or vertex_index.
+PlyMesh read_ply(const std::filesystem::path& path);
+
+// Candidate lists: "vertex,face" or "a0,a1,b0,b1" a line, no header.
+std::vector<std::array<int, 2>> read_vertex_face_pairs(const std::filesystem::path& path);
+std::vector<std::array<int, 4>> read_edge_edge_pairs(const std::filesystem::path& path);
+
+struct Scene {
+  std::string path;
+  Eigen::MatrixXd positions_t0;
+  Eigen::MatrixXd positions_t1;
+  Eigen::MatrixXi faces;
+  Candidates candidates;
+  std::optional<std::vector<bool>> vertex_face_truth;
+  std::optional<std::vector<bool>> edge_edge_truth;
+};
+
+// A directory holding t0.ply and t1.ply.
+bool is_scene_directory(const std::filesystem::path& path);
+
+// t0.ply, t1.ply (same vertex count, faces from t0.ply), vf.csv and ee.csv
+// (either may be absent: an empty list), vf_truth.txt and ee_truth.txt
+// (optional; their length must match). Every index is checked against the mesh.
+Scene read_scene(const std::filesystem::path& directory);
+
+}  // namespace batchccd
