@@ -1,0 +1,24 @@
+#include "batchccd/ccd.hpp"
+
+#include "reference/reference.hpp"
+
+namespace batchccd {
+
+QueryResult query_ccd(Kind kind, const Query& query, const Options& options) {
+  return reference::evaluate_query(kind, query, options).result;
+}
+
+QueryResult vertex_face_ccd(const Vec3& p_t0, const Vec3& a_t0, const Vec3& b_t0,
+                            const Vec3& c_t0, const Vec3& p_t1, const Vec3& a_t1,
+                            const Vec3& b_t1, const Vec3& c_t1, const Options& options) {
+  return query_ccd(Kind::vertex_face, {{p_t0, a_t0, b_t0, c_t0, p_t1, a_t1, b_t1, c_t1}}, options);
+}
+
+QueryResult edge_edge_ccd(const Vec3& ea0_t0, const Vec3& ea1_t0, const Vec3& eb0_t0,
+                          const Vec3& eb1_t0, const Vec3& ea0_t1, const Vec3& ea1_t1,
+                          const Vec3& eb0_t1, const Vec3& eb1_t1, const Options& options) {
+  return query_ccd(Kind::edge_edge,
+                   {{ea0_t0, ea1_t0, eb0_t0, eb1_t0, ea0_t1, ea1_t1, eb0_t1, eb1_t1}}, options);
+}
+
+}  // namespace batchccd

@@ -1,0 +1,87 @@
+#pragma once
+
+// The coplanarity cubic in Bernstein form, computed straight from the
+// geometry (DESIGN.md §2), together with the magnitudes its forward error
+// bound needs. Written once over the arithmetic type T: double in the scalar
+// reference path, an xsimd batch in the lane kernels, so both make the same
+// decisions bit for bit.
+
+namespace batchccd::reference {
+
+template <class T>
+struct Vector3 {
+  T x, y, z;
+};
+
+template <class T>
+Vector3<T> cross(const Vector3<T>& a, const Vector3<T>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+// The cross product of absolute values with + in place of -: bounds every
+// term the real cross product adds up.
+template <class T>
+Vector3<T> cross_magnitude(const Vector3<T>& a, const Vector3<T>& b) {
+  return {a.y * b.z + a.z * b.y, a.z * b.x + a.x * b.z, a.x * b.y + a.y * b.x};
+}
+
+template <class T>
+T dot(const Vector3<T>& a, const Vector3<T>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+// d(t) = A(t) x B(t) . C(t) with A, B, C linear over an interval, given by
+// their values at its ends (A0, A1, ...). Coefficients are those of the
+// Bernstein basis scaled by (1, 3, 3, 1): same signs, no division.
+template <class T>
+struct BernsteinCubic {
+  T coefficient[4];
+  T magnitude[4];  // the same sums over absolute values
+};
+
+template <class T>
+BernsteinCubic<T> bernstein_cubic(const Vector3<T>& a0, const Vector3<T>& a1,
+                                  const Vector3<T>& b0, const Vector3<T>& b1,
+                                  const Vector3<T>& c0, const Vector3<T>& c1) {
+  const Vector3<T> a0b0 = cross(a0, b0), a1b0 = cross(a1, b0);
+  const Vector3<T> a0b1 = cross(a0, b1), a1b1 = cross(a1, b1);
+  BernsteinCubic<T> cubic;
+  cubic.coefficient[0] = dot(a0b0, c0);
+  cubic.coefficient[1] = dot(a1b0, c0) + dot(a0b1, c0) + dot(a0b0, c1);
+  cubic.coefficient[2] = dot(a1b1, c0) + dot(a1b0, c1) + dot(a0b1, c1);
+  cubic.coefficient[3] = dot(a1b1, c1);
+  return cubic;
+}
+
+// The magnitudes, given the absolute values (or upper bounds of them) of the
+// factors: |a0| componentwise, and so on.
+template <class T>
+void bernstein_magnitudes(BernsteinCubic<T>& cubic, const Vector3<T>& a0, const Vector3<T>& a1,
+                          const Vector3<T>& b0, const Vector3<T>& b1, const Vector3<T>& c0,
+                          const Vector3<T>& c1) {
+  const Vector3<T> a0b0 = cross_magnitude(a0, b0), a1b0 = cross_magnitude(a1, b0);
+  const Vector3<T> a0b1 = cross_magnitude(a0, b1), a1b1 = cross_magnitude(a1, b1);
+  cubic.magnitude[0] = dot(a0b0, c0);
+  cubic.magnitude[1] = dot(a1b0, c0) + dot(a0b1, c0) + dot(a0b0, c1);
+  cubic.magnitude[2] = dot(a1b1, c0) + dot(a1b0, c1) + dot(a0b1, c1);
+  cubic.magnitude[3] = dot(a1b1, c1);
+}
+
+// Bernstein coefficients of the two halves [0, 1/2] and [1/2, 1] (de
+// Casteljau), each scaled by positive constants so only sums and small
+// integer multiples remain: left (c0, 3c0+c1, 3c0+2c1+c2, c0+c1+c2+c3),
+// right (c0+c1+c2+c3, c1+2c2+3c3, c2+3c3, c3). Applied alike to magnitudes.
+template <class T>
+void split_at_half(const T (&c)[4], T (&left)[4], T (&right)[4]) {
+  const T sum = c[0] + c[1] + c[2] + c[3];
+  left[0] = c[0];
+  left[1] = T(3) * c[0] + c[1];
+  left[2] = T(3) * c[0] + T(2) * c[1] + c[2];
+  left[3] = sum;
+  right[0] = sum;
+  right[1] = c[1] + T(2) * c[2] + T(3) * c[3];
+  right[2] = c[2] + T(3) * c[3];
+  right[3] = c[3];
+}
+
+}  // namespace batchccd::reference

@@ -1,0 +1,49 @@
+#pragma once
+
+// Forward error bounds of the certified path (DESIGN.md §2): a computed value
+// v of an expression whose exact value is x satisfies
+//   |v - x| <= relative * magnitude + floor,
+// where magnitude is the same expression evaluated on absolute values. Each
+// `relative` is the count of roundings on one term's path, times the unit
+// roundoff u, with room to spare for the rounding of the bound itself; each
+// floor covers underflow (absolute errors of at most 2^-1074 per operation,
+// and the query's own ScaledQuery::absolute_error per factor).
+namespace batchccd::reference {
+
+inline constexpr double kUnitRoundoff = 0x1p-53;
+inline constexpr double kUnderflowFloor = 0x1p-1060;
+
+struct ErrorModel {
+  double relative = 0;
+  double floor = 0;
+};
+
+// Coefficients of the cubic from the scaled differences themselves (one
+// rounding each): 3 input roundings + 5 in a triple product + 2 in a sum of
+// three = 10 u, bounded by 16 u. Every term is a product of three factors
+// below 2 in magnitude, 6 terms a triple product, 3 products a sum: a factor
+// floor e perturbs a coefficient by at most 216 e.
+inline ErrorModel coefficient_error(double factor_floor) {
+  return {16 * kUnitRoundoff, 256 * factor_floor + kUnderflowFloor};
+}
+
+// Coefficients from positions interpolated inside [0, 1] ((1-t) a + t b: 3
+// roundings a factor, 9 for three factors) plus 7 in the arithmetic: 16 u,
+// bounded by 32 u.
+inline ErrorModel interpolated_coefficient_error(double factor_floor) {
+  return {32 * kUnitRoundoff, 256 * (factor_floor + 0x1p-1073) + kUnderflowFloor};
+}
+
+// Halves after split_at_half: the coefficients' own error (16 u) plus three
+// roundings in the combination; the weights of a combination add up to 8.
+inline ErrorModel half_coefficient_error(const ErrorModel& whole) {
+  return {24 * kUnitRoundoff, 8 * whole.floor};
+}
+
+// A point of the collision function F (a weighted sum of three interpolated
+// positions, weights at most 1 in magnitude): 3 u a position, 3 u the sum.
+inline ErrorModel collision_function_error(double factor_floor) {
+  return {16 * kUnitRoundoff, 4 * (factor_floor + 0x1p-1073) + kUnderflowFloor};
+}
+
+}  // namespace batchccd::reference

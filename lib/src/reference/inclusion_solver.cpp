@@ -1,0 +1,238 @@
+#include "reference/inclusion_solver.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "reference/bernstein.hpp"
+#include "reference/error_bounds.hpp"
+#include "reference/sign_filter.hpp"
+
+namespace batchccd::reference {
+namespace {
+
+// Parameters are never split below this width: dyadic boxes stay exact and
+// (1 - t), 1 - v and u + v never round.
+constexpr double kSmallestWidth = 0x1p-45;
+
+struct Interval {
+  double low, high;
+  double width() const { return high - low; }
+  double middle() const { return 0.5 * (low + high); }
+};
+
+// Earliest start first: a min-heap on the time interval's start.
+bool starts_later(const Interval& a, const Interval& b) { return a.low > b.low; }
+
+struct ParameterBox {
+  Interval u, v;
+};
+
+using V3 = Vector3<double>;
+
+V3 as_vector(const Vec3& v) { return {v[0], v[1], v[2]}; }
+V3 absolute(const V3& v) { return {std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}; }
+V3 interpolate(const V3& a, const V3& b, double t) {
+  const double s = 1 - t;
+  return {s * a.x + t * b.x, s * a.y + t * b.y, s * a.z + t * b.z};
+}
+V3 weighted_sum(const std::array<double, 3>& w, const std::array<V3, 3>& p) {
+  return {w[0] * p[0].x + w[1] * p[1].x + w[2] * p[2].x,
+          w[0] * p[0].y + w[1] * p[1].y + w[2] * p[2].y,
+          w[0] * p[0].z + w[1] * p[1].z + w[2] * p[2].z};
+}
+double component(const V3& v, int axis) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; }
+
+// F = sum_i w_i * relative_i in the frame of x1 (see ScaledQuery):
+//   VF: p - a - u (b - a) - v (c - a)            -> weights (-u, -v, 1)
+//   EE: ea0 + u (ea1 - ea0) - eb0 - v (eb1 - eb0) -> weights (u, v - 1, -v)
+std::array<double, 3> weights(Kind kind, double u, double v) {
+  if (kind == Kind::vertex_face) return {-u, -v, 1.0};
+  return {u, v - 1, -v};
+}
+
+enum class Search { excluded, found, unresolved, out_of_iterations };
+
+// The positions x2..x4 (relative to x1) and their magnitudes at both ends
+// of a time interval.
+struct Endpoints {
+  std::array<V3, 3> position[2];
+  std::array<V3, 3> magnitude[2];
+};
+
+class InclusionSolver {
+ public:
+  InclusionSolver(Kind kind, const ScaledQuery& query, const SolverSettings& settings)
+      : kind_(kind), settings_(settings) {
+    settings_.toi_tolerance = std::max(settings_.toi_tolerance, kSmallestWidth);
+    for (int i = 0; i < 3; ++i)
+      for (int tau = 0; tau < 2; ++tau) {
+        position_[i][tau] = as_vector(query.relative[i][tau]);
+        magnitude_[i][tau] = absolute(position_[i][tau]);
+      }
+    if (settings.certified) {
+      cubic_error_ = interpolated_coefficient_error(query.absolute_error);
+      function_error_ = collision_function_error(query.absolute_error);
+    }
+  }
+
+  // Outer search over time, earliest interval first, so the first interval
+  // settled as a contact starts no later than the first contact.
+  SolverOutcome run() {
+    std::vector<Interval>& heap = time_heap();
+    heap.assign(1, Interval{0, 1});
+    while (!heap.empty()) {
+      std::pop_heap(heap.begin(), heap.end(), starts_later);
+      const Interval time = heap.back();
+      heap.pop_back();
+      const Endpoints ends = endpoints(time);
+      if (cubic_excludes(ends)) continue;
+      const Search search = search_parameters(ends);
+      if (search == Search::excluded) continue;
+      if (search == Search::out_of_iterations) return {true, time.low, true};
+      const bool settled = time.width() <= settings_.toi_tolerance;
+      if ((search == Search::found && settled) || time.width() <= kSmallestWidth)
+        return {true, time.low, false};  // a contact, or nothing left to refine
+      for (const Interval half : {Interval{time.low, time.middle()}, Interval{time.middle(), time.high}}) {
+        heap.push_back(half);
+        std::push_heap(heap.begin(), heap.end(), starts_later);
+      }
+    }
+    return {};
+  }
+
+ private:
+  struct Image {
+    bool excluded = false;
+    double width = 0;  // widest component range, error included
+    // How much component `axis` of F changes along dimension d (0 t, 1 u, 2 v).
+    double influence[3][3] = {};
+  };
+
+  static std::vector<Interval>& time_heap() {
+    thread_local std::vector<Interval> buffer;
+    return buffer;
+  }
+  static std::vector<ParameterBox>& parameter_stack() {
+    thread_local std::vector<ParameterBox> buffer;
+    return buffer;
+  }
+
+  Endpoints endpoints(const Interval& time) const {
+    Endpoints ends;
+    for (int end = 0; end < 2; ++end) {
+      const double t = end == 0 ? time.low : time.high;
+      for (int i = 0; i < 3; ++i) {
+        ends.position[end][i] = interpolate(position_[i][0], position_[i][1], t);
+        ends.magnitude[end][i] = interpolate(magnitude_[i][0], magnitude_[i][1], t);
+      }
+    }
+    return ends;
+  }
+
+  // Root isolation: the coplanarity cubic certainly has no root in the interval.
+  bool cubic_excludes(const Endpoints& e) const {
+    const auto& p = e.position;
+    const auto& m = e.magnitude;
+    BernsteinCubic<double> cubic = bernstein_cubic(p[0][0], p[1][0], p[0][1], p[1][1], p[0][2], p[1][2]);
+    bernstein_magnitudes(cubic, m[0][0], m[1][0], m[0][1], m[1][1], m[0][2], m[1][2]);
+    return certainly_root_free(cubic.coefficient, cubic.magnitude, cubic_error_.relative,
+                               cubic_error_.floor);
+  }
+
+  // Inner search over (u, v) for one time interval, depth first: excluded
+  // when every box is; found as soon as one box's image is within tolerance;
+  // unresolved when the time interval's own width keeps a box's image wide
+  // (the outer search must split time first).
+  Search search_parameters(const Endpoints& ends) {
+    std::vector<ParameterBox>& stack = parameter_stack();
+    stack.assign(1, ParameterBox{{0, 1}, {0, 1}});
+    while (!stack.empty()) {
+      const ParameterBox box = stack.back();
+      stack.pop_back();
+      if (++iterations_ > settings_.max_iterations) return Search::out_of_iterations;
+      if (kind_ == Kind::vertex_face && box.u.low + box.v.low > 1) continue;  // outside the triangle
+      const Image image = evaluate(ends, box);
+      if (image.excluded) continue;
+      if (image.width <= settings_.tolerance) return Search::found;
+      const int dimension = dimension_to_split(box, image);
+      if (dimension < 0) return Search::unresolved;
+      ParameterBox low = box, high = box;
+      Interval& low_range = dimension == 1 ? low.u : low.v;
+      Interval& high_range = dimension == 1 ? high.u : high.v;
+      low_range.high = high_range.low = low_range.middle();
+      stack.push_back(high);
+      stack.push_back(low);
+    }
+    return Search::excluded;
+  }
+
+  Image evaluate(const Endpoints& ends, const ParameterBox& box) const {
+    V3 value[2][2][2];  // [t end][u end][v end]
+    double largest_magnitude = 0;
+    for (int ti = 0; ti < 2; ++ti)
+      for (int ui = 0; ui < 2; ++ui)
+        for (int vi = 0; vi < 2; ++vi) {
+          std::array<double, 3> w = weights(kind_, ui ? box.u.high : box.u.low, vi ? box.v.high : box.v.low);
+          value[ti][ui][vi] = weighted_sum(w, ends.position[ti]);
+          for (double& x : w) x = std::fabs(x);
+          const V3 magnitude = weighted_sum(w, ends.magnitude[ti]);
+          largest_magnitude = std::max({largest_magnitude, magnitude.x, magnitude.y, magnitude.z});
+        }
+    const double error = function_error_.relative * largest_magnitude + function_error_.floor;
+
+    Image image;
+    for (int axis = 0; axis < 3; ++axis) {
+      auto at = [&](int t, int u, int v) { return component(value[t][u][v], axis); };
+      double low = INFINITY, high = -INFINITY;
+      for (int corner = 0; corner < 8; ++corner) {
+        const double x = at(corner >> 2, (corner >> 1) & 1, corner & 1);
+        low = std::min(low, x);
+        high = std::max(high, x);
+      }
+      if (low > error || high < -error) {
+        image.excluded = true;
+        return image;
+      }
+      image.width = std::max(image.width, high - low + 2 * error);
+      double (&influence)[3] = image.influence[axis];
+      for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b) {
+          influence[0] = std::max(influence[0], std::fabs(at(1, a, b) - at(0, a, b)));
+          influence[1] = std::max(influence[1], std::fabs(at(a, 1, b) - at(a, 0, b)));
+          influence[2] = std::max(influence[2], std::fabs(at(a, b, 1) - at(a, b, 0)));
+        }
+    }
+    return image;
+  }
+
+  // u (1) or v (2), whichever changes F more, or -1 when splitting cannot
+  // help: both are at their smallest width, or time changes F more than they
+  // do (the outer search must split time first).
+  static int dimension_to_split(const ParameterBox& box, const Image& image) {
+    double influence[3] = {};
+    for (const auto& axis : image.influence)
+      for (int d = 0; d < 3; ++d) influence[d] = std::max(influence[d], axis[d]);
+    if (box.u.width() <= kSmallestWidth) influence[1] = 0;
+    if (box.v.width() <= kSmallestWidth) influence[2] = 0;
+    const int best = influence[1] >= influence[2] ? 1 : 2;
+    return influence[best] > influence[0] ? best : -1;
+  }
+
+  Kind kind_;
+  SolverSettings settings_;
+  V3 position_[3][2];
+  V3 magnitude_[3][2];
+  ErrorModel cubic_error_;
+  ErrorModel function_error_;
+  std::int64_t iterations_ = 0;
+};
+
+}  // namespace
+
+SolverOutcome solve_inclusion(Kind kind, const ScaledQuery& query, const SolverSettings& settings) {
+  return InclusionSolver(kind, query, settings).run();
+}
+
+}  // namespace batchccd::reference

@@ -1,0 +1,36 @@
+#pragma once
+
+#include <cstdint>
+
+#include "reference/scaled_query.hpp"
+
+namespace batchccd::reference {
+
+struct SolverSettings {
+  bool certified = true;       // false: plain double, no error bounds (fast mode)
+  bool need_toi = true;
+  double tolerance = 1e-9;     // distance, in the scaled frame (query size ~1)
+  double toi_tolerance = 1e-7;
+  std::int64_t max_iterations = 1 << 20;
+};
+
+struct SolverOutcome {
+  bool hit = false;
+  double toi = 0;          // when hit: a lower bound of the first contact
+  bool undecided = false;  // ran out of iterations (reported as a hit)
+};
+
+// Decides whether the primitives meet for some t in [0, 1] by bisecting boxes
+// of (t, u, v), where u, v are the barycentric (VF) or edge (EE) parameters
+// and F(t, u, v) the vector between the two points they name; F vanishes
+// exactly at a contact. F is linear in u and v and in t, so its range over a
+// box is spanned by the box's 8 corners: a box is excluded when one component
+// is certainly nonzero at every corner, or when the coplanarity cubic is
+// certainly nonzero over the box's times (root isolation, DESIGN.md §3).
+// Boxes are taken earliest time first, so the first box that cannot be
+// excluded and whose image is within `tolerance` of zero gives the TOI.
+// Degenerate triangles, parallel or zero-length edges and coplanar motion
+// need no special case: F stays well defined.
+SolverOutcome solve_inclusion(Kind kind, const ScaledQuery& query, const SolverSettings& settings);
+
+}  // namespace batchccd::reference

@@ -1,0 +1,37 @@
+#pragma once
+
+#include <array>
+
+#include "batchccd/query.hpp"
+
+namespace batchccd::reference {
+
+// A query moved into the frame of its first point x1 (DESIGN.md §1 numbering:
+// VF x1..x3 the triangle, x4 the vertex; EE x1,x2 edge a, x3,x4 edge b) and
+// scaled by powers of two (DESIGN.md §2, "Floating point"):
+//
+//   relative[i][tau] = (x_{i+2}(tau) - x_1(tau)) * 2^scale,  i = 0, 1, 2
+//
+// Translating by the moving point x1(t) is exact in exact arithmetic (the
+// relative motion stays linear), so x1 sits at the origin for all t. Every
+// component carries at most one rounding (|error| <= u |value|, from the
+// subtraction) plus an absolute floor `absolute_error` from underflow. The
+// largest component lies in [1, 2), so nothing later overflows, and a query
+// scaled by any power of two (within double range) maps to the same frame
+// bit for bit: decisions and TOI do not depend on units.
+struct ScaledQuery {
+  std::array<std::array<Vec3, 2>, 3> relative;
+  double absolute_error = 0;
+  bool finite = true;      // false: some input coordinate is NaN or infinite
+  bool coincident = false; // all four points coincide at t0 and t1
+};
+
+ScaledQuery scale_query(Kind kind, const Query& query);
+
+// Index of DESIGN.md's x_k (k = 1..4) among Query::points at t0 (add 4 for t1).
+constexpr int point_index(Kind kind, int k) {
+  // VF files list the vertex first: p, a, b, c; DESIGN.md numbers a, b, c, p.
+  return kind == Kind::edge_edge ? k - 1 : (k == 4 ? 0 : k);
+}
+
+}  // namespace batchccd::reference

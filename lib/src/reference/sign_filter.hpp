@@ -1,0 +1,36 @@
+#pragma once
+
+#include "reference/bernstein.hpp"
+
+// The algebraic non-penetration filter (DESIGN.md §2): a certified sign test
+// on the Bernstein coefficients, branch-free so it runs unchanged in SIMD
+// lanes (T = double or an xsimd batch; the result is bool-like per lane).
+namespace batchccd::reference {
+
+// All four coefficients certainly of one sign: no root on the interval.
+template <class T>
+auto certainly_root_free(const T (&coefficient)[4], const T (&magnitude)[4], T relative, T floor) {
+  auto positive = coefficient[0] > relative * magnitude[0] + floor;
+  auto negative = coefficient[0] < -(relative * magnitude[0] + floor);
+  for (int k = 1; k < 4; ++k) {
+    const T bound = relative * magnitude[k] + floor;
+    positive = positive & (coefficient[k] > bound);
+    negative = negative & (coefficient[k] < -bound);
+  }
+  return positive | negative;
+}
+
+// V = 0 on [0, 1], or V = 0 on both halves after one subdivision (which is
+// what settles V = 2 without roots).
+template <class T>
+auto sign_filter_culls(const BernsteinCubic<T>& cubic, T relative, T floor, T half_relative,
+                       T half_floor) {
+  T left[4], right[4], left_magnitude[4], right_magnitude[4];
+  split_at_half(cubic.coefficient, left, right);
+  split_at_half(cubic.magnitude, left_magnitude, right_magnitude);
+  return certainly_root_free(cubic.coefficient, cubic.magnitude, relative, floor) |
+         (certainly_root_free(left, left_magnitude, half_relative, half_floor) &
+          certainly_root_free(right, right_magnitude, half_relative, half_floor));
+}
+
+}  // namespace batchccd::reference

@@ -1,0 +1,171 @@
+// The scalar reference path's building blocks: scaling, Bernstein form,
+// sign filter, solvers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "batchccd/ccd.hpp"
+#include "reference/bernstein.hpp"
+#include "reference/cubic_solver.hpp"
+#include "reference/filter.hpp"
+#include "reference/inclusion_solver.hpp"
+#include "reference/scaled_query.hpp"
+
+namespace batchccd::reference {
+namespace {
+
+Query vertex_falling_through_triangle() {
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  return {{Vec3(0.25, 0.25, 1), a, b, c, Vec3(0.25, 0.25, -1), a, b, c}};
+}
+
+Query far_apart_vertex_face() {
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  return {{Vec3(0.25, 0.25, 3), a, b, c, Vec3(0.25, 0.25, 2), a, b, c}};
+}
+
+TEST(ScaledQuery, LargestDifferenceIsNormalised) {
+  const ScaledQuery scaled = scale_query(Kind::vertex_face, vertex_falling_through_triangle());
+  double largest = 0;
+  for (const auto& pair : scaled.relative)
+    for (const Vec3& v : pair) largest = std::max(largest, v.cwiseAbs().maxCoeff());
+  EXPECT_GE(largest, 1.0);
+  EXPECT_LT(largest, 2.0);
+  EXPECT_TRUE(scaled.finite);
+  EXPECT_FALSE(scaled.coincident);
+}
+
+TEST(ScaledQuery, PowerOfTwoScalingGivesTheSameFrame) {
+  const Query query = vertex_falling_through_triangle();
+  const ScaledQuery reference = scale_query(Kind::vertex_face, query);
+  for (int exponent : {-1000, -500, -3, 5, 500, 1000}) {
+    Query scaled_input = query;
+    for (Vec3& p : scaled_input.points) p *= std::ldexp(1.0, exponent);
+    const ScaledQuery scaled = scale_query(Kind::vertex_face, scaled_input);
+    for (int i = 0; i < 3; ++i)
+      for (int tau = 0; tau < 2; ++tau)
+        EXPECT_EQ(scaled.relative[i][tau], reference.relative[i][tau]) << "exponent " << exponent;
+  }
+}
+
+TEST(ScaledQuery, HugeCoordinatesDoNotOverflow) {
+  Query query = vertex_falling_through_triangle();
+  query.points[0] = Vec3(1.5e308, -1.7e308, 1e308);
+  const ScaledQuery scaled = scale_query(Kind::vertex_face, query);
+  for (const auto& pair : scaled.relative)
+    for (const Vec3& v : pair) EXPECT_TRUE(v.allFinite());
+}
+
+TEST(ScaledQuery, FlagsNonFiniteAndCoincidentInput) {
+  Query query = vertex_falling_through_triangle();
+  query.points[5][1] = std::nan("");
+  EXPECT_FALSE(scale_query(Kind::vertex_face, query).finite);
+  Query point{};
+  for (Vec3& p : point.points) p = Vec3(3, 3, 3);
+  EXPECT_TRUE(scale_query(Kind::edge_edge, point).coincident);
+}
+
+// The Bernstein coefficients from the geometry equal those from the
+// monomial form (c0 = a0, c1 = 3a0 + a1, c2 = 3a0 + 2a1 + a2, c3 = sum).
+TEST(Bernstein, MatchesTheMonomialForm) {
+  std::mt19937_64 random(7);
+  std::uniform_int_distribution<int> small(-8, 8);
+  for (int trial = 0; trial < 200; ++trial) {
+    Vector3<double> p[6];
+    for (auto& v : p) v = {double(small(random)), double(small(random)), double(small(random))};
+    const BernsteinCubic<double> cubic = bernstein_cubic(p[0], p[1], p[2], p[3], p[4], p[5]);
+    // d(t) at t = 0, 1/3, 2/3, 1 from the geometry, and from the Bernstein form.
+    for (double t : {0.0, 1.0 / 3, 2.0 / 3, 1.0}) {
+      auto at = [t](const Vector3<double>& a, const Vector3<double>& b) {
+        return Vector3<double>{(1 - t) * a.x + t * b.x, (1 - t) * a.y + t * b.y, (1 - t) * a.z + t * b.z};
+      };
+      const double direct = dot(cross(at(p[0], p[1]), at(p[2], p[3])), at(p[4], p[5]));
+      const double s = 1 - t;
+      const double bernstein = cubic.coefficient[0] * s * s * s + cubic.coefficient[1] * s * s * t +
+                               cubic.coefficient[2] * s * t * t + cubic.coefficient[3] * t * t * t;
+      EXPECT_NEAR(direct, bernstein, 1e-9);
+    }
+  }
+}
+
+TEST(SignFilter, CullsSeparatedQueries) {
+  EXPECT_TRUE(sign_filter_culls(scale_query(Kind::vertex_face, far_apart_vertex_face()), true));
+  EXPECT_TRUE(sign_filter_culls(scale_query(Kind::vertex_face, far_apart_vertex_face()), false));
+}
+
+TEST(SignFilter, KeepsCrossingsAndCoplanarMotion) {
+  EXPECT_FALSE(sign_filter_culls(scale_query(Kind::vertex_face, vertex_falling_through_triangle()), true));
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  const Query coplanar{{Vec3(-1, 0.25, 0), a, b, c, Vec3(0.5, 0.25, 0), a, b, c}};
+  EXPECT_FALSE(sign_filter_culls(scale_query(Kind::vertex_face, coplanar), true));
+  EXPECT_FALSE(sign_filter_culls(scale_query(Kind::vertex_face, coplanar), false));
+}
+
+// V = 2 without a root: only the subdivision at 1/2 culls it.
+TEST(SignFilter, SubdivisionSettlesVEqualsTwo) {
+  // 8 d(t) with d = (2t - 1)^2 + 1/8: scaled Bernstein coefficients (9, -5, -5, 9).
+  BernsteinCubic<double> cubic{{9, -5, -5, 9}, {9, 5, 5, 9}};
+  EXPECT_FALSE(certainly_root_free(cubic.coefficient, cubic.magnitude, 0.0, 0.0));
+  EXPECT_TRUE(sign_filter_culls(cubic, 0.0, 0.0, 0.0, 0.0));
+  // (2t - 1)^2 touches zero at 1/2: never culled.
+  BernsteinCubic<double> touching{{1, -1, -1, 1}, {1, 1, 1, 1}};
+  EXPECT_FALSE(sign_filter_culls(touching, 0.0, 0.0, 0.0, 0.0));
+}
+
+TEST(SignFilter, CertifiedCullsAreASubsetOfPlainCulls) {
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> coordinate(-1, 1);
+  int certified_culls = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    Query query;
+    for (Vec3& p : query.points) p = Vec3(coordinate(random), coordinate(random), coordinate(random));
+    for (Kind kind : {Kind::vertex_face, Kind::edge_edge}) {
+      const ScaledQuery scaled = scale_query(kind, query);
+      const bool certified = sign_filter_culls(scaled, true);
+      certified_culls += certified;
+      if (certified) EXPECT_TRUE(sign_filter_culls(scaled, false));
+    }
+  }
+  EXPECT_GT(certified_culls, 0);
+}
+
+TEST(InclusionSolver, FindsTheCrossingTime) {
+  const ScaledQuery scaled = scale_query(Kind::vertex_face, vertex_falling_through_triangle());
+  const SolverOutcome outcome = solve_inclusion(Kind::vertex_face, scaled, {});
+  EXPECT_TRUE(outcome.hit);
+  EXPECT_LE(outcome.toi, 0.5);
+  EXPECT_GE(outcome.toi, 0.5 - 1e-7);
+  EXPECT_FALSE(outcome.undecided);
+}
+
+TEST(InclusionSolver, StopsAtTheIterationLimitConservatively) {
+  const ScaledQuery scaled = scale_query(Kind::vertex_face, vertex_falling_through_triangle());
+  SolverSettings settings;
+  settings.max_iterations = 3;
+  const SolverOutcome outcome = solve_inclusion(Kind::vertex_face, scaled, settings);
+  EXPECT_TRUE(outcome.hit);
+  EXPECT_TRUE(outcome.undecided);
+  EXPECT_LE(outcome.toi, 0.5);
+}
+
+TEST(CubicSolver, FindsACleanCrossing) {
+  const QueryResult result = solve_cubic(Kind::vertex_face, vertex_falling_through_triangle());
+  EXPECT_TRUE(result.hit);
+  EXPECT_NEAR(result.toi, 0.5, 1e-12);
+  EXPECT_FALSE(solve_cubic(Kind::vertex_face, far_apart_vertex_face()).hit);
+}
+
+TEST(Modes, AgreeOnCleanQueries) {
+  for (Mode mode : {Mode::conservative, Mode::fast, Mode::cubic}) {
+    Options options;
+    options.mode = mode;
+    EXPECT_TRUE(query_ccd(Kind::vertex_face, vertex_falling_through_triangle(), options).hit)
+        << to_string(mode);
+    EXPECT_FALSE(query_ccd(Kind::vertex_face, far_apart_vertex_face(), options).hit)
+        << to_string(mode);
+  }
+}
+
+}  // namespace
+}  // namespace batchccd::reference
