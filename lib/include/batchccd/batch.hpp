@@ -33,6 +33,11 @@ struct BatchResult {
   Counters counters;
 };
 
+// The instruction set a batch call with `requested` runs: automatic picks
+// the best this processor and build have. Throws std::invalid_argument when
+// a forced one is not available.
+Isa resolve_isa(Isa requested);
+
 // Raw queries, all of one kind.
 BatchResult batch_ccd(Kind kind, std::span<const Query> queries,
                       const Options& options = {});

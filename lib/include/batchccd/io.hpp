@@ -15,8 +15,9 @@
 
 // Readers for the data formats of DESIGN.md §5. Every reader validates what
 // it reads and throws InputError naming the file, the line (0 when the
-// problem has no line, e.g. a missing file or a binary PLY body) and the
-// problem; none crashes on malformed input.
+// problem has no line, e.g. a missing file, or a binary PLY body, where the
+// message names the element entry instead) and the problem; none crashes on
+// malformed input.
 namespace batchccd {
 
 class InputError : public std::runtime_error {
@@ -36,8 +37,9 @@ class InputError : public std::runtime_error {
 double exact_double_from_rational(std::string_view numerator,
                                   std::string_view denominator);
 
-// The kind a path names: "vertex-face" or a "vf" word means vertex_face,
-// "edge-edge" or an "ee" word edge_edge (the last such component wins).
+// The kind a path names, ignoring case: "vertex-face" or a "vf" word means
+// vertex_face, "edge-edge" or an "ee" word edge_edge (the last such component
+// wins).
 std::optional<Kind> kind_from_path(const std::filesystem::path& path);
 
 struct QueryFile {

@@ -11,7 +11,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <limits>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -37,14 +36,22 @@ struct ScalarTypeName {
 
 // Both spellings of the PLY specification.
 constexpr std::array<ScalarTypeName, 16> scalar_type_names{{
-    {"char", ScalarType::int8},       {"int8", ScalarType::int8},
-    {"uchar", ScalarType::uint8},     {"uint8", ScalarType::uint8},
-    {"short", ScalarType::int16},     {"int16", ScalarType::int16},
-    {"ushort", ScalarType::uint16},   {"uint16", ScalarType::uint16},
-    {"int", ScalarType::int32},       {"int32", ScalarType::int32},
-    {"uint", ScalarType::uint32},     {"uint32", ScalarType::uint32},
-    {"float", ScalarType::float32},   {"float32", ScalarType::float32},
-    {"double", ScalarType::float64},  {"float64", ScalarType::float64},
+    {"char", ScalarType::int8},
+    {"int8", ScalarType::int8},
+    {"uchar", ScalarType::uint8},
+    {"uint8", ScalarType::uint8},
+    {"short", ScalarType::int16},
+    {"int16", ScalarType::int16},
+    {"ushort", ScalarType::uint16},
+    {"uint16", ScalarType::uint16},
+    {"int", ScalarType::int32},
+    {"int32", ScalarType::int32},
+    {"uint", ScalarType::uint32},
+    {"uint32", ScalarType::uint32},
+    {"float", ScalarType::float32},
+    {"float32", ScalarType::float32},
+    {"double", ScalarType::float64},
+    {"float64", ScalarType::float64},
 }};
 
 std::optional<ScalarType> scalar_type_named(std::string_view name) {
@@ -56,13 +63,17 @@ std::optional<ScalarType> scalar_type_named(std::string_view name) {
 std::size_t byte_size(ScalarType type) {
   switch (type) {
     case ScalarType::int8:
-    case ScalarType::uint8: return 1;
+    case ScalarType::uint8:
+      return 1;
     case ScalarType::int16:
-    case ScalarType::uint16: return 2;
+    case ScalarType::uint16:
+      return 2;
     case ScalarType::int32:
     case ScalarType::uint32:
-    case ScalarType::float32: return 4;
-    case ScalarType::float64: return 8;
+    case ScalarType::float32:
+      return 4;
+    case ScalarType::float64:
+      return 8;
   }
   return 8;
 }
@@ -71,21 +82,31 @@ bool is_integer(ScalarType type) { return type != ScalarType::float32 && type !=
 
 std::int64_t lowest_value(ScalarType type) {
   switch (type) {
-    case ScalarType::int8: return INT8_MIN;
-    case ScalarType::int16: return INT16_MIN;
-    case ScalarType::int32: return INT32_MIN;
-    default: return 0;
+    case ScalarType::int8:
+      return INT8_MIN;
+    case ScalarType::int16:
+      return INT16_MIN;
+    case ScalarType::int32:
+      return INT32_MIN;
+    default:
+      return 0;
   }
 }
 
 std::int64_t highest_value(ScalarType type) {
   switch (type) {
-    case ScalarType::int8: return INT8_MAX;
-    case ScalarType::uint8: return UINT8_MAX;
-    case ScalarType::int16: return INT16_MAX;
-    case ScalarType::uint16: return UINT16_MAX;
-    case ScalarType::int32: return INT32_MAX;
-    default: return UINT32_MAX;
+    case ScalarType::int8:
+      return INT8_MAX;
+    case ScalarType::uint8:
+      return UINT8_MAX;
+    case ScalarType::int16:
+      return INT16_MAX;
+    case ScalarType::uint16:
+      return UINT16_MAX;
+    case ScalarType::int32:
+      return INT32_MAX;
+    default:
+      return UINT32_MAX;
   }
 }
 
@@ -269,8 +290,8 @@ const Element* element_named(const Header& header, std::string_view name) {
 void check_count_fits_int(const std::string& file, const Element& element) {
   if (element.count > static_cast<std::uint64_t>(INT_MAX))
     throw InputError(file, element.header_line,
-                     "element " + element.name + " declares " + std::to_string(element.count) +
-                         " entries (at most " + std::to_string(INT_MAX) + " supported)");
+                     "element " + element.name + " declares " + std::to_string(element.count) + " entries (at most " +
+                         std::to_string(INT_MAX) + " supported)");
 }
 
 void locate_coordinates(const std::string& file, const Element& vertex, MeshLayout& layout) {
@@ -291,7 +312,8 @@ void locate_face_indices(const std::string& file, const Element& face, MeshLayou
   if (!index)
     throw InputError(file, face.header_line, "the face element has no vertex_indices (or vertex_index) property");
   const Property& property = face.properties[*index];
-  if (!property.is_list()) throw InputError(file, face.header_line, "face property " + property.name + " is not a list");
+  if (!property.is_list())
+    throw InputError(file, face.header_line, "face property " + property.name + " is not a list");
   if (!is_integer(property.value_type))
     throw InputError(file, face.header_line, "face property " + property.name + " must hold integers");
   layout.index_property = *index;
@@ -374,9 +396,12 @@ class BinarySource {
   double read_real(ScalarType type) {
     const char* bytes = take(byte_size(type));
     switch (type) {
-      case ScalarType::float32: return static_cast<double>(load_bytes<float>(bytes, swap_bytes_));
-      case ScalarType::float64: return load_bytes<double>(bytes, swap_bytes_);
-      default: return static_cast<double>(decode_integer(type, bytes));
+      case ScalarType::float32:
+        return static_cast<double>(load_bytes<float>(bytes, swap_bytes_));
+      case ScalarType::float64:
+        return load_bytes<double>(bytes, swap_bytes_);
+      default:
+        return static_cast<double>(decode_integer(type, bytes));
     }
   }
 
@@ -401,13 +426,20 @@ class BinarySource {
 
   std::int64_t decode_integer(ScalarType type, const char* bytes) const {
     switch (type) {
-      case ScalarType::int8: return load_bytes<std::int8_t>(bytes, swap_bytes_);
-      case ScalarType::uint8: return load_bytes<std::uint8_t>(bytes, swap_bytes_);
-      case ScalarType::int16: return load_bytes<std::int16_t>(bytes, swap_bytes_);
-      case ScalarType::uint16: return load_bytes<std::uint16_t>(bytes, swap_bytes_);
-      case ScalarType::int32: return load_bytes<std::int32_t>(bytes, swap_bytes_);
-      case ScalarType::uint32: return load_bytes<std::uint32_t>(bytes, swap_bytes_);
-      default: fail("expected an integer type");  // excluded by the header checks
+      case ScalarType::int8:
+        return load_bytes<std::int8_t>(bytes, swap_bytes_);
+      case ScalarType::uint8:
+        return load_bytes<std::uint8_t>(bytes, swap_bytes_);
+      case ScalarType::int16:
+        return load_bytes<std::int16_t>(bytes, swap_bytes_);
+      case ScalarType::uint16:
+        return load_bytes<std::uint16_t>(bytes, swap_bytes_);
+      case ScalarType::int32:
+        return load_bytes<std::int32_t>(bytes, swap_bytes_);
+      case ScalarType::uint32:
+        return load_bytes<std::uint32_t>(bytes, swap_bytes_);
+      default:
+        fail("expected an integer type");  // excluded by the header checks
     }
   }
 
@@ -452,7 +484,8 @@ class AsciiSource {
     double value = 0.0;
     const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
     if (error == std::errc::result_out_of_range) fail("number " + in_quotes(token) + " is out of the double range");
-    if (error != std::errc() || end != token.data() + token.size()) fail("expected a number, found " + in_quotes(token));
+    if (error != std::errc() || end != token.data() + token.size())
+      fail("expected a number, found " + in_quotes(token));
     return value;
   }
 
@@ -557,8 +590,7 @@ class BodyReader {
         continue;
       }
       const std::int64_t count = read_list_count(property);
-      if (count != 3)
-        source_.fail("a face with " + std::to_string(count) + " vertices: only triangles are supported");
+      if (count != 3) source_.fail("a face with " + std::to_string(count) + " vertices: only triangles are supported");
       for (Eigen::Index corner = 0; corner < 3; ++corner) row(corner) = read_vertex_id(property);
     }
   }
@@ -611,7 +643,8 @@ PlyMesh read_ply(const std::filesystem::path& path) {
   const MeshLayout layout = mesh_layout(file, header);
   const std::string_view body = std::string_view(bytes).substr(header.body_offset);
   check_declared_size(file, header, body.size());
-  if (header.encoding == Encoding::ascii) return read_body(AsciiSource(file, body, header.body_first_line), header, layout);
+  if (header.encoding == Encoding::ascii)
+    return read_body(AsciiSource(file, body, header.body_first_line), header, layout);
   return read_body(BinarySource(file, body, needs_byte_swap(header.encoding)), header, layout);
 }
 

@@ -3,6 +3,7 @@
 #include <cctype>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "batchccd/io.hpp"
@@ -12,8 +13,8 @@ namespace batchccd {
 
 namespace {
 
-using io_detail::NumberedLine;
 using io_detail::in_quotes;
+using io_detail::NumberedLine;
 
 struct Word {
   std::string text;  // lower case
@@ -41,8 +42,7 @@ std::vector<Word> alphanumeric_words(std::string_view text) {
 }
 
 // "vertex-face" (or "vertex_face"): two words one separator apart.
-bool is_pair(const std::vector<Word>& words, std::size_t i, std::string_view first,
-             std::string_view second) {
+bool is_pair(const std::vector<Word>& words, std::size_t i, std::string_view first, std::string_view second) {
   return i + 1 < words.size() && words[i].text == first && words[i + 1].text == second &&
          words[i + 1].begin == words[i].end + 1;
 }
@@ -79,8 +79,7 @@ class QueryCsvParser {
     for (std::size_t first = 0; first < lines.size(); first += rows_per_query) {
       Query query;
       std::optional<bool> truth;
-      for (std::size_t row = 0; row < rows_per_query; ++row)
-        read_row(lines[first + row], query.points[row], truth);
+      for (std::size_t row = 0; row < rows_per_query; ++row) read_row(lines[first + row], query.points[row], truth);
       result.queries.push_back(query);
       if (result.truth) result.truth->push_back(*truth);
     }

@@ -14,6 +14,7 @@ namespace batchccd {
 
 namespace {
 
+using io_detail::all_digits;
 using io_detail::in_quotes;
 using io_detail::trim;
 
@@ -30,13 +31,6 @@ class BigInteger {
  private:
   mpz_t value_;
 };
-
-bool all_digits(std::string_view text) {
-  if (text.empty()) return false;
-  for (const char c : text)
-    if (c < '0' || c > '9') return false;
-  return true;
-}
 
 // Parses [+-]digits; GMP's own parser would also accept inner whitespace.
 void parse_decimal(std::string_view text, const char* role, BigInteger& out) {
@@ -55,8 +49,8 @@ std::string fraction_text(std::string_view numerator, std::string_view denominat
 }
 
 // Smallest and largest binary exponents a bit of a finite double can have.
-constexpr long lowest_bit_exponent = -1074;   // the least subnormal, 2^-1074
-constexpr long highest_bit_exponent = 1023;   // the leading bit of DBL_MAX
+constexpr long lowest_bit_exponent = -1074;  // the least subnormal, 2^-1074
+constexpr long highest_bit_exponent = 1023;  // the leading bit of DBL_MAX
 constexpr unsigned long significand_bits = 53;
 
 }  // namespace
@@ -67,8 +61,7 @@ double exact_double_from_rational(std::string_view numerator, std::string_view d
   parse_decimal(numerator, "numerator", num);
   parse_decimal(denominator, "denominator", den);
   const std::string value = fraction_text(numerator, denominator);
-  if (mpz_sgn(den.get()) <= 0)
-    throw std::invalid_argument(value + ": the denominator must be positive");
+  if (mpz_sgn(den.get()) <= 0) throw std::invalid_argument(value + ": the denominator must be positive");
   if (mpz_sgn(num.get()) == 0) return 0.0;
 
   BigInteger divisor;

@@ -12,21 +12,16 @@ namespace batchccd {
 
 namespace {
 
-using io_detail::NumberedLine;
+using io_detail::all_digits;
 using io_detail::in_quotes;
-
-bool all_digits(std::string_view text) {
-  if (text.empty()) return false;
-  for (const char c : text)
-    if (c < '0' || c > '9') return false;
-  return true;
-}
+using io_detail::NumberedLine;
 
 int parse_id(const std::string& file, const NumberedLine& line, std::size_t column, std::string_view field) {
   const std::string where = "column " + std::to_string(column + 1) + ": ";
   if (!field.empty() && field.front() == '-' && all_digits(field.substr(1)))
     throw InputError(file, line.number, where + "negative id " + in_quotes(field));
-  if (!all_digits(field)) throw InputError(file, line.number, where + "expected a non-negative integer, found " + in_quotes(field));
+  if (!all_digits(field))
+    throw InputError(file, line.number, where + "expected a non-negative integer, found " + in_quotes(field));
   int id = 0;
   const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), id);
   if (error != std::errc() || end != field.data() + field.size())
@@ -45,8 +40,9 @@ std::vector<std::array<int, N>> read_id_rows(const std::filesystem::path& path) 
     if (io_detail::trim(line.text).empty()) throw InputError(file, line.number, "empty line");
     const std::vector<std::string_view> fields = io_detail::split_fields(line.text);
     if (fields.size() != N)
-      throw InputError(file, line.number,
-                       "expected " + std::to_string(N) + " comma-separated ids, found " + std::to_string(fields.size()));
+      throw InputError(
+          file, line.number,
+          "expected " + std::to_string(N) + " comma-separated ids, found " + std::to_string(fields.size()));
     std::array<int, N> row{};
     for (std::size_t column = 0; column < N; ++column) row[column] = parse_id(file, line, column, fields[column]);
     rows.push_back(row);

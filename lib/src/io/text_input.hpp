@@ -17,7 +17,7 @@ namespace batchccd::io_detail {
 std::string read_input_file(const std::filesystem::path& path);
 
 struct NumberedLine {
-  long number;  // 1-based
+  long number;            // 1-based
   std::string_view text;  // without '\n' and a trailing '\r'
 };
 
@@ -34,6 +34,9 @@ std::vector<std::string_view> split_fields(std::string_view line);
 // User text for a message: in quotes and cut short, since a malformed
 // number may be arbitrarily long.
 std::string in_quotes(std::string_view text, std::size_t max_length = 60);
+
+// True for one or more of 0-9 and nothing else.
+bool all_digits(std::string_view text);
 
 // "0" -> false, "1" -> true, anything else -> nullopt.
 std::optional<bool> parse_bit(std::string_view text);

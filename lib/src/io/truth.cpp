@@ -1,6 +1,7 @@
 // Ground-truth files: a JSON array of booleans or one 0/1 a line.
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "batchccd/io.hpp"
@@ -21,19 +22,14 @@ class JsonArrayReader {
     std::vector<bool> values;
     expect('[');
     skip_whitespace();
-    if (peek() == ']') {
-      ++position_;
-    } else {
-      while (true) {
-        values.push_back(read_value());
-        skip_whitespace();
-        if (peek() == ']') {
-          ++position_;
-          break;
-        }
-        expect(',');
-      }
+    bool closed = peek() == ']';
+    while (!closed) {
+      values.push_back(read_value());
+      skip_whitespace();
+      closed = peek() == ']';
+      if (!closed) expect(',');
     }
+    ++position_;  // past the ']'
     skip_whitespace();
     if (position_ < text_.size()) fail("unexpected text after the closing ']'");
     return values;
@@ -42,28 +38,26 @@ class JsonArrayReader {
  private:
   bool read_value() {
     skip_whitespace();
+    if (position_ >= text_.size()) fail("unexpected end of file: expected a value");
     const std::size_t start = position_;
     while (position_ < text_.size() && is_word_character(text_[position_])) ++position_;
     const std::string_view word = text_.substr(start, position_ - start);
     if (word == "true" || word == "1") return true;
     if (word == "false" || word == "0") return false;
-    if (word.empty()) fail(position_ < text_.size() ? "expected true, false, 0 or 1, found " + in_quotes(text_.substr(position_, 1))
-                                                   : "the array is not closed: expected a value");
-    fail("expected true, false, 0 or 1, found " + in_quotes(word));
+    fail("expected true, false, 0 or 1, found " + in_quotes(word.empty() ? text_.substr(position_, 1) : word));
   }
 
   void expect(char wanted) {
     skip_whitespace();
-    if (position_ >= text_.size())
-      fail(std::string("unexpected end of file: expected '") + wanted + "'");
+    if (position_ >= text_.size()) fail(std::string("unexpected end of file: expected '") + wanted + "'");
     if (text_[position_] != wanted)
       fail(std::string("expected '") + wanted + "', found " + in_quotes(text_.substr(position_, 1)));
     ++position_;
   }
 
   static bool is_word_character(char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
-           c == '-' || c == '+';
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' || c == '-' ||
+           c == '+';
   }
 
   void skip_whitespace() {
