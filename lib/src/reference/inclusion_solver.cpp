@@ -7,6 +7,7 @@
 
 #include "reference/bernstein.hpp"
 #include "reference/error_bounds.hpp"
+#include "reference/inside_proof.hpp"
 #include "reference/sign_filter.hpp"
 
 namespace batchccd::reference {
@@ -15,6 +16,10 @@ namespace {
 // Parameters are never split below this width: dyadic boxes stay exact and
 // (1 - t), 1 - v and u + v never round.
 constexpr double kSmallestWidth = 0x1p-45;
+
+// Time intervals wider than this search the parameters with a small budget.
+constexpr double kWideInterval = 0x1p-8;
+constexpr std::int64_t kWideBudget = 16;
 
 struct Interval {
   double low, high;
@@ -87,13 +92,25 @@ class InclusionSolver {
       const Interval time = heap.back();
       heap.pop_back();
       const Endpoints ends = endpoints(time);
-      if (cubic_excludes(ends)) continue;
-      const Search search = search_parameters(ends);
-      if (search == Search::excluded) continue;
-      if (search == Search::out_of_iterations) return {true, time.low, true};
-      const bool settled = time.width() <= settings_.toi_tolerance;
-      if ((search == Search::found && settled) || time.width() <= kSmallestWidth)
-        return {true, time.low, false};  // a contact, or nothing left to refine
+      const CubicSigns cubic = cubic_signs(ends);
+      if (cubic.root_free) continue;
+      const bool settled = time.width() <= settings_.toi_tolerance || !settings_.need_toi;
+      // A certain root and a certain inside test over the interval: a
+      // contact lies in it, no need to search the parameters.
+      const bool contact =
+          cubic.certain_root && certainly_inside(kind_, position_balls(ends));
+      if (!contact) {
+        // Wide intervals get a small parameter budget: their search mostly
+        // ends unresolved, and splitting time is cheaper.
+        const std::int64_t budget = time.width() > kWideInterval ? kWideBudget : settings_.max_iterations;
+        const Search search = search_parameters(ends, budget);
+        if (search == Search::excluded) continue;
+        if (search == Search::out_of_iterations) return {true, time.low, true};
+        if (search == Search::found && settled) return {true, time.low, false};
+      } else if (settled) {
+        return {true, time.low, false};
+      }
+      if (time.width() <= kSmallestWidth) return {true, time.low, false};  // nothing left to refine
       for (const Interval half : {Interval{time.low, time.middle()}, Interval{time.middle(), time.high}}) {
         heap.push_back(half);
         std::push_heap(heap.begin(), heap.end(), starts_later);
@@ -131,27 +148,58 @@ class InclusionSolver {
     return ends;
   }
 
-  // Root isolation: the coplanarity cubic certainly has no root in the interval.
-  bool cubic_excludes(const Endpoints& e) const {
+  struct CubicSigns {
+    bool root_free;     // certainly no root in the interval
+    bool certain_root;  // certainly opposite signs at its ends
+  };
+
+  // Root isolation on the coplanarity cubic over the interval.
+  CubicSigns cubic_signs(const Endpoints& e) const {
     const auto& p = e.position;
     const auto& m = e.magnitude;
     BernsteinCubic<double> cubic = bernstein_cubic(p[0][0], p[1][0], p[0][1], p[1][1], p[0][2], p[1][2]);
     bernstein_magnitudes(cubic, m[0][0], m[1][0], m[0][1], m[1][1], m[0][2], m[1][2]);
-    return certainly_root_free(cubic.coefficient, cubic.magnitude, cubic_error_.relative,
-                               cubic_error_.floor);
+    const ErrorModel& error = cubic_error_;
+    auto sign = [&](int k) {  // -1, 0 (uncertain) or +1
+      const double bound = error.relative * cubic.magnitude[k] + error.floor;
+      return cubic.coefficient[k] > bound ? 1 : cubic.coefficient[k] < -bound ? -1 : 0;
+    };
+    return {static_cast<bool>(certainly_root_free(cubic.coefficient, cubic.magnitude,
+                                                  error.relative, error.floor)),
+            sign(0) * sign(3) < 0};
+  }
+
+  // Each position component as a ball holding all its values over the
+  // interval: between its two (certified) end values.
+  PositionBalls position_balls(const Endpoints& e) const {
+    PositionBalls balls;
+    for (int i = 0; i < 3; ++i) {
+      auto ball = [&](double low, double high, double magnitude_low, double magnitude_high) {
+        const double error = function_error_.relative * std::max(magnitude_low, magnitude_high) +
+                             function_error_.floor;
+        const double middle = 0.5 * (low + high);
+        return Ball{middle, ball_detail::grown(0.5 * std::fabs(high - low) + error, middle)};
+      };
+      const V3 &p0 = e.position[0][i], &p1 = e.position[1][i];
+      const V3 &m0 = e.magnitude[0][i], &m1 = e.magnitude[1][i];
+      balls[i] = {ball(p0.x, p1.x, m0.x, m1.x), ball(p0.y, p1.y, m0.y, m1.y),
+                  ball(p0.z, p1.z, m0.z, m1.z)};
+    }
+    return balls;
   }
 
   // Inner search over (u, v) for one time interval, depth first: excluded
   // when every box is; found as soon as one box's image is within tolerance;
   // unresolved when the time interval's own width keeps a box's image wide
   // (the outer search must split time first).
-  Search search_parameters(const Endpoints& ends) {
+  Search search_parameters(const Endpoints& ends, std::int64_t budget) {
     std::vector<ParameterBox>& stack = parameter_stack();
     stack.assign(1, ParameterBox{{0, 1}, {0, 1}});
     while (!stack.empty()) {
       const ParameterBox box = stack.back();
       stack.pop_back();
       if (++iterations_ > settings_.max_iterations) return Search::out_of_iterations;
+      if (--budget < 0) return Search::unresolved;
       if (kind_ == Kind::vertex_face && box.u.low + box.v.low > 1) continue;  // outside the triangle
       const Image image = evaluate(ends, box);
       if (image.excluded) continue;
