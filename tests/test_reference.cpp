@@ -10,6 +10,7 @@
 #include "reference/cubic_solver.hpp"
 #include "reference/filter.hpp"
 #include "reference/inclusion_solver.hpp"
+#include "reference/sign_filter.hpp"
 #include "reference/scaled_query.hpp"
 
 namespace batchccd::reference {

@@ -252,7 +252,69 @@ class InclusionSolver {
           influence[2] = std::max(influence[2], std::fabs(at(a, b, 1) - at(a, b, 0)));
         }
     }
+    image.excluded = separated_along_center(ends, value, error);
     return image;
+  }
+
+  // Exclusion along two more directions, both from F at the box's centre
+  // (the mean of the corners, F being multilinear): that vector itself, and
+  // its part normal to the directions in which u and v move F. Where the
+  // contact set is a slanted line in (u, v) (zero-area triangles, parallel
+  // edges) the axis tests need boxes as small as the distance to exclude a
+  // strip along it; along the normal part a box is excluded whatever its
+  // size in (u, v).
+  bool separated_along_center(const Endpoints& ends, const V3 (&value)[2][2][2], double error) const {
+    V3 center{0, 0, 0};
+    double largest = 0;
+    for (int corner = 0; corner < 8; ++corner) {
+      const V3& x = value[corner >> 2][(corner >> 1) & 1][corner & 1];
+      center = {center.x + x.x, center.y + x.y, center.z + x.z};
+      largest = std::max({largest, std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)});
+    }
+    // Any direction will do: the bound covers the corners' own error and the
+    // rounding of the dot products (three terms).
+    auto separates = [&](const V3& direction) {
+      const double weight = std::fabs(direction.x) + std::fabs(direction.y) + std::fabs(direction.z);
+      const double bound = weight * (error + 4 * kUnitRoundoff * largest) + kUnderflowFloor;
+      for (int corner = 0; corner < 8; ++corner)
+        if (!(dot(direction, value[corner >> 2][(corner >> 1) & 1][corner & 1]) > bound)) return false;
+      return true;
+    };
+    return separates(center) || separates(normal_part(center, parameter_directions(ends)));
+  }
+
+  // dF/du and dF/dv at the interval's middle time (F is linear in each).
+  std::array<V3, 2> parameter_directions(const Endpoints& ends) const {
+    std::array<V3, 3> middle;
+    for (int i = 0; i < 3; ++i) middle[i] = interpolate(ends.position[0][i], ends.position[1][i], 0.5);
+    const std::array<double, 3> at_origin = weights(kind_, 0, 0);
+    std::array<V3, 2> directions;
+    for (int d = 0; d < 2; ++d) {
+      std::array<double, 3> w = weights(kind_, d == 0 ? 1 : 0, d == 1 ? 1 : 0);
+      for (int i = 0; i < 3; ++i) w[i] -= at_origin[i];
+      directions[d] = weighted_sum(w, middle);
+    }
+    return directions;
+  }
+
+  // x minus its least-squares projection onto span{a, b}; onto the longer of
+  // the two when they are (nearly) parallel.
+  static V3 normal_part(const V3& x, const std::array<V3, 2>& span) {
+    const V3 &a = span[0], &b = span[1];
+    const double aa = dot(a, a), ab = dot(a, b), bb = dot(b, b);
+    const double determinant = aa * bb - ab * ab;
+    auto minus = [&](double alpha, const V3& p, double beta, const V3& q) {
+      return V3{x.x - alpha * p.x - beta * q.x, x.y - alpha * p.y - beta * q.y,
+                x.z - alpha * p.z - beta * q.z};
+    };
+    if (determinant > 1e-12 * aa * bb) {
+      const double xa = dot(x, a), xb = dot(x, b);
+      return minus((xa * bb - xb * ab) / determinant, a, (xb * aa - xa * ab) / determinant, b);
+    }
+    const V3& longer = aa >= bb ? a : b;
+    const double length = std::max(aa, bb);
+    if (length == 0) return x;
+    return minus(dot(x, longer) / length, longer, 0, longer);
   }
 
   // u (1) or v (2), whichever changes F more, or -1 when splitting cannot

@@ -1,0 +1,741 @@
+// Property tests over random queries (fixed seeds, so every run sees the same
+// queries). What they hold the library to:
+//
+// - Units do not matter: scaling all 24 coordinates by 2^k changes neither
+//   the decision nor the TOI, bit for bit (conservative and fast).
+// - Conservative mode has no false negatives: a query built to collide
+//   (exact dyadic coordinates, so the contact is exact) is reported as a hit
+//   no later than the built contact, and so is every exactly equivalent
+//   description of it (axes permuted or flipped, translated, time reversed,
+//   triangle vertices or edge endpoints reordered). A query whose primitives
+//   stay clearly apart keeps missing under the same transforms.
+// - Nothing breaks on extreme finite input (1e-300 .. 1e300), in any mode.
+// - NaN or infinite coordinates give Status::invalid_input with hit == true.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "batchccd/ccd.hpp"
+
+namespace {
+
+using batchccd::Kind;
+using batchccd::Mode;
+using batchccd::Options;
+using batchccd::Query;
+using batchccd::QueryResult;
+using batchccd::Status;
+using batchccd::Vec3;
+using Rng = std::mt19937_64;
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// ---------------------------------------------------------------------------
+// Small helpers.
+
+double uniform(Rng& rng, double low, double high) {
+  return std::uniform_real_distribution<double>(low, high)(rng);
+}
+int uniform_int(Rng& rng, int low, int high) {
+  return std::uniform_int_distribution<int>(low, high)(rng);
+}
+bool coin(Rng& rng, double probability = 0.5) {
+  return std::bernoulli_distribution(probability)(rng);
+}
+
+Options with_mode(Mode mode) {
+  Options options;
+  options.mode = mode;
+  return options;
+}
+
+QueryResult run(Kind kind, const Query& query, Mode mode = Mode::conservative) {
+  return batchccd::query_ccd(kind, query, with_mode(mode));
+}
+
+std::string describe(Kind kind, const Query& query) {
+  std::ostringstream out;
+  out.precision(17);
+  out << batchccd::to_string(kind) << " {";
+  for (int i = 0; i < 8; ++i) {
+    const Vec3& x = query.points[i];
+    out << (i ? ", " : "") << "(" << x[0] << ", " << x[1] << ", " << x[2] << ")";
+  }
+  out << "}";
+  return out.str();
+}
+
+Query scaled(const Query& query, int exponent) {
+  Query result = query;
+  for (Vec3& x : result.points)
+    for (int axis = 0; axis < 3; ++axis) x[axis] = std::ldexp(x[axis], exponent);
+  return result;
+}
+
+// ---------------------------------------------------------------------------
+// Random points. Grid points are dyadic with few significant bits, so every
+// construction below (interpolation at dyadic times, dyadic barycentric
+// weights, division by powers of two) and every integer translation stays
+// exact in double.
+
+enum class PointKind {
+  integer_grid,  // integers in [-8, 8]
+  fine_grid,     // multiples of 2^-16 in [-16, 16]
+  real,          // uniform doubles in [-1, 1] (constructions then inexact)
+};
+
+struct PointMaker {
+  PointKind kind = PointKind::integer_grid;
+  bool planar = false;  // every point in z = 0: coplanar motion throughout
+
+  double coordinate(Rng& rng) const {
+    switch (kind) {
+      case PointKind::integer_grid:
+        return uniform_int(rng, -8, 8);
+      case PointKind::fine_grid:
+        return std::ldexp(uniform_int(rng, -(1 << 20), 1 << 20), -16);
+      case PointKind::real:
+        return uniform(rng, -1, 1);
+    }
+    return 0;
+  }
+  Vec3 operator()(Rng& rng) const {
+    const double x = coordinate(rng), y = coordinate(rng);
+    return {x, y, planar ? 0.0 : coordinate(rng)};
+  }
+};
+
+PointMaker random_point_maker(Rng& rng, bool exact_only) {
+  PointMaker maker;
+  const int choice = uniform_int(rng, 0, exact_only ? 1 : 2);
+  maker.kind = choice == 0 ? PointKind::integer_grid
+               : choice == 1 ? PointKind::fine_grid
+                             : PointKind::real;
+  maker.planar = coin(rng, 0.15);
+  return maker;
+}
+
+Vec3 lerp(const Vec3& at0, const Vec3& at1, double t) { return at0 + t * (at1 - at0); }
+
+// Contact times at which a path through a given point can be solved for
+// exactly: t or 1 - t is a power of two (or t is 0 or 1).
+double random_contact_time(Rng& rng) {
+  static const double times[] = {0, 0.125, 0.25, 0.5, 0.75, 0.875, 1};
+  return times[uniform_int(rng, 0, 6)];
+}
+
+// A point moving linearly that is exactly at `target` at time t.
+void place_through(Rng& rng, const PointMaker& point, const Vec3& target, double t, Vec3& at0,
+                   Vec3& at1) {
+  if (t == 0) {
+    at0 = target;
+    at1 = point(rng);
+  } else if (t == 1) {
+    at1 = target;
+    at0 = point(rng);
+  } else if (t <= 0.5) {  // t = 2^-s
+    at0 = point(rng);
+    at1 = at0 + (target - at0) / t;
+  } else {  // 1 - t = 2^-s
+    at1 = point(rng);
+    at0 = at1 + (target - at1) / (1 - t);
+  }
+}
+
+// Motion of the primitive that is not solved for: static, translating or free.
+void random_motion(Rng& rng, const PointMaker& point, int count, Vec3* at0, Vec3* at1) {
+  const int style = uniform_int(rng, 0, 2);
+  const Vec3 shift = point(rng);
+  for (int i = 0; i < count; ++i) {
+    at0[i] = point(rng);
+    at1[i] = style == 0 ? at0[i] : style == 1 ? Vec3(at0[i] + shift) : point(rng);
+  }
+}
+
+struct Contact {
+  Kind kind;
+  Query query;
+  double time;  // a time at which the primitives touch (exactly, for grid points)
+};
+
+// Vertex-face: the triangle moves at random, the vertex is placed on it at a
+// random barycentric point (corners and edges included) at a random time.
+Contact vertex_face_contact(Rng& rng, const PointMaker& point, double segment_share) {
+  Vec3 at0[3], at1[3];  // a, b, c
+  random_motion(rng, point, 3, at0, at1);
+  // Degenerate triangles now and then: one point (1 in 20), or a segment (c = b
+  // or three collinear corners, `segment_share` of the time: the solver can
+  // spend its whole iteration budget on those, ~0.1 s each, see the
+  // degenerate suite, so the slower tests ask for fewer).
+  if (coin(rng, 0.05)) {  // all three corners one point
+    at0[1] = at0[2] = at0[0];
+    at1[1] = at1[2] = at1[0];
+  } else if (coin(rng, segment_share)) {
+    if (coin(rng)) {  // zero area: c = b
+      at0[2] = at0[1];
+      at1[2] = at1[1];
+    } else {  // collinear: c = a + 2 (b - a)
+      at0[2] = at0[0] + 2 * (at0[1] - at0[0]);
+      at1[2] = at1[0] + 2 * (at1[1] - at1[0]);
+    }
+  }
+  const double t = random_contact_time(rng);
+  const Vec3 a = lerp(at0[0], at1[0], t), b = lerp(at0[1], at1[1], t), c = lerp(at0[2], at1[2], t);
+  const int i = uniform_int(rng, 0, 16), j = uniform_int(rng, 0, 16 - i);
+  const double u = i / 16.0, v = j / 16.0;
+  const Vec3 target = a + u * (b - a) + v * (c - a);
+  Vec3 p0, p1;
+  place_through(rng, point, target, t, p0, p1);
+  return {Kind::vertex_face, Query{{p0, at0[0], at0[1], at0[2], p1, at1[0], at1[1], at1[2]}}, t};
+}
+
+// Edge-edge: edge a moves at random; edge b is built through a random point
+// of edge a at a random time, at a parameter v where v or 1 - v is a power of
+// two.
+Contact edge_edge_contact(Rng& rng, const PointMaker& point) {
+  Vec3 a0[2], a1[2];  // edge a's endpoints at t0 and t1
+  random_motion(rng, point, 2, a0, a1);
+  if (coin(rng, 0.08)) {  // zero-length edge a
+    a0[1] = a0[0];
+    a1[1] = a1[0];
+  }
+  const double t = random_contact_time(rng);
+  const double u = uniform_int(rng, 0, 16) / 16.0;
+  const Vec3 ea0 = lerp(a0[0], a1[0], t), ea1 = lerp(a0[1], a1[1], t);
+  const Vec3 target = ea0 + u * (ea1 - ea0);
+
+  static const double parameters[] = {0, 0.125, 0.25, 0.5, 0.75, 0.875, 1};
+  const double v = parameters[uniform_int(rng, 0, 6)];
+  const bool zero_length_b = coin(rng, 0.08);
+  Vec3 b0[2], b1[2];  // edge b's endpoints at t0 and t1
+  if (zero_length_b) {
+    place_through(rng, point, target, t, b0[0], b1[0]);
+    b0[1] = b0[0];
+    b1[1] = b1[0];
+  } else if (v == 0) {
+    place_through(rng, point, target, t, b0[0], b1[0]);
+    b0[1] = point(rng);
+    b1[1] = coin(rng) ? b0[1] : point(rng);
+  } else if (v == 1 || v <= 0.5) {  // v = 2^-s: solve for endpoint 1
+    b0[0] = point(rng);
+    b1[0] = coin(rng) ? b0[0] : point(rng);
+    const Vec3 start = lerp(b0[0], b1[0], t);
+    place_through(rng, point, start + (target - start) / v, t, b0[1], b1[1]);
+  } else {  // 1 - v = 2^-s: solve for endpoint 0
+    b0[1] = point(rng);
+    b1[1] = coin(rng) ? b0[1] : point(rng);
+    const Vec3 end = lerp(b0[1], b1[1], t);
+    place_through(rng, point, end + (target - end) / (1 - v), t, b0[0], b1[0]);
+  }
+  return {Kind::edge_edge, Query{{a0[0], a0[1], b0[0], b0[1], a1[0], a1[1], b1[0], b1[1]}}, t};
+}
+
+// segment_share: how often a VF triangle is a segment (zero area).
+Contact random_contact(Rng& rng, Kind kind, const PointMaker& point,
+                       double segment_share = 1.0 / 30) {
+  return kind == Kind::vertex_face ? vertex_face_contact(rng, point, segment_share)
+                                   : edge_edge_contact(rng, point);
+}
+
+// ---------------------------------------------------------------------------
+// Distances, to certify that generated misses really are clear misses.
+
+double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double length2 = ab.squaredNorm();
+  const double s = length2 > 0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return (p - (a + s * ab)).norm();
+}
+
+// Never more than the true distance (up to rounding): the minimum over the
+// endpoint pairs and, when the closest points of the two lines lie (nearly)
+// inside both segments, the distance of the lines.
+double segment_segment_distance(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1) {
+  double distance = std::min({point_segment_distance(a0, b0, b1), point_segment_distance(a1, b0, b1),
+                              point_segment_distance(b0, a0, a1), point_segment_distance(b1, a0, a1)});
+  const Vec3 da = a1 - a0, db = b1 - b0, r = b0 - a0;
+  const Vec3 n = da.cross(db);
+  const double n2 = n.squaredNorm();
+  if (n2 > 0) {
+    const double s = r.cross(db).dot(n) / n2, u = r.cross(da).dot(n) / n2;
+    constexpr double slack = 1e-6;
+    if (s >= -slack && s <= 1 + slack && u >= -slack && u <= 1 + slack)
+      distance = std::min(distance, std::fabs(r.dot(n)) / std::sqrt(n2));
+  }
+  return distance;
+}
+
+double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  double distance = std::min({point_segment_distance(p, a, b), point_segment_distance(p, b, c),
+                              point_segment_distance(p, c, a)});
+  const Vec3 n = (b - a).cross(c - a);
+  const double n2 = n.squaredNorm();
+  if (n2 > 0) {
+    const double slack = -1e-6 * n2;
+    if ((b - p).cross(c - p).dot(n) >= slack && (c - p).cross(a - p).dot(n) >= slack &&
+        (a - p).cross(b - p).dot(n) >= slack)
+      distance = std::min(distance, std::fabs((p - a).dot(n)) / std::sqrt(n2));
+  }
+  return distance;
+}
+
+double distance_at(Kind kind, const Query& q, double t) {
+  std::array<Vec3, 4> x;
+  for (int i = 0; i < 4; ++i) x[i] = (1 - t) * q.points[i] + t * q.points[i + 4];
+  return kind == Kind::vertex_face ? point_triangle_distance(x[0], x[1], x[2], x[3])
+                                   : segment_segment_distance(x[0], x[1], x[2], x[3]);
+}
+
+// Largest extent of the query along any axis: at least its size under any
+// equivalent description.
+double diameter(const Query& q) {
+  double largest = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    double low = kInfinity, high = -kInfinity;
+    for (const Vec3& x : q.points) {
+      low = std::min(low, x[axis]);
+      high = std::max(high, x[axis]);
+    }
+    largest = std::max(largest, high - low);
+  }
+  return largest;
+}
+
+// True when the primitives certainly stay more than `gap` apart over [0, 1]:
+// the distance changes with t at most as fast as the points move (Lipschitz
+// constant `speed`), so bisect time until every interval is cleared.
+bool certainly_apart(Kind kind, const Query& q, double gap) {
+  double speed = 0;
+  if (kind == Kind::vertex_face) {
+    double triangle = 0;
+    for (int i = 1; i < 4; ++i) triangle = std::max(triangle, (q.points[i + 4] - q.points[i]).norm());
+    speed = (q.points[4] - q.points[0]).norm() + triangle;
+  } else {
+    const double a = std::max((q.points[4] - q.points[0]).norm(), (q.points[5] - q.points[1]).norm());
+    const double b = std::max((q.points[6] - q.points[2]).norm(), (q.points[7] - q.points[3]).norm());
+    speed = a + b;
+  }
+  std::vector<std::array<double, 2>> stack = {{0.0, 1.0}};
+  int evaluations = 0;
+  while (!stack.empty()) {
+    const auto [low, high] = stack.back();
+    stack.pop_back();
+    if (++evaluations > 20000) return false;
+    const double middle = 0.5 * (low + high);
+    if (distance_at(kind, q, middle) - speed * 0.5 * (high - low) > gap) continue;
+    if (high - low < 1e-7) return false;
+    stack.push_back({low, middle});
+    stack.push_back({middle, high});
+  }
+  return true;
+}
+
+// The points shifted to turn a contact into a miss: the vertex (VF), edge b (EE).
+std::vector<int> moving_points(Kind kind) {
+  return kind == Kind::vertex_face ? std::vector<int>{0, 4} : std::vector<int>{2, 3, 6, 7};
+}
+
+// A query whose primitives stay more than 1e-3 of its diameter apart: a
+// contact with the vertex (VF) or edge b (EE) shifted off it, when that
+// clears it; otherwise another try.
+Query random_clear_miss(Rng& rng, Kind kind, const PointMaker& point) {
+  for (;;) {
+    Query q = random_contact(rng, kind, point).query;
+    const double scale = std::ldexp(1.0, -uniform_int(rng, 0, 4));
+    Vec3 shift(uniform_int(rng, -4, 4) * scale, uniform_int(rng, -4, 4) * scale,
+               point.planar ? 0.0 : uniform_int(rng, -4, 4) * scale);
+    if (point.kind == PointKind::real) shift *= 0.25;
+    for (int index : moving_points(kind)) q.points[index] += shift;
+    if (certainly_apart(kind, q, 1e-3 * diameter(q))) return q;
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Exactly equivalent descriptions of a query.
+
+struct Variant {
+  std::string name;
+  Query query;
+  bool time_reversed = false;
+};
+
+Query permute_axes(const Query& q, const std::array<int, 3>& order) {
+  Query result = q;
+  for (int i = 0; i < 8; ++i)
+    for (int axis = 0; axis < 3; ++axis) result.points[i][axis] = q.points[i][order[axis]];
+  return result;
+}
+
+Query flip_axes(const Query& q, int mask) {
+  Query result = q;
+  for (Vec3& x : result.points)
+    for (int axis = 0; axis < 3; ++axis)
+      if (mask & (1 << axis)) x[axis] = -x[axis];
+  return result;
+}
+
+Query translate(const Query& q, const Vec3& offset) {
+  Query result = q;
+  for (Vec3& x : result.points) x += offset;
+  return result;
+}
+
+Query reverse_time(const Query& q) {
+  Query result = q;
+  for (int i = 0; i < 4; ++i) std::swap(result.points[i], result.points[i + 4]);
+  return result;
+}
+
+// New point i (at t0; t1 alike) is old point order[i].
+Query reorder_points(const Query& q, const std::array<int, 4>& order) {
+  Query result;
+  for (int i = 0; i < 4; ++i) {
+    result.points[i] = q.points[order[i]];
+    result.points[i + 4] = q.points[order[i] + 4];
+  }
+  return result;
+}
+
+std::vector<Variant> equivalent_variants(Rng& rng, Kind kind, const Query& q, bool exact) {
+  std::vector<Variant> variants;
+  std::array<int, 3> order = {0, 1, 2};
+  while (std::next_permutation(order.begin(), order.end()))
+    variants.push_back({"axes permuted " + std::to_string(order[0]) + std::to_string(order[1]) +
+                            std::to_string(order[2]),
+                        permute_axes(q, order)});
+  for (int mask = 1; mask < 8; ++mask)
+    variants.push_back({"axes flipped, mask " + std::to_string(mask), flip_axes(q, mask)});
+  if (exact) {
+    // Integer offsets keep grid coordinates exact (they carry few bits).
+    for (int k = 0; k < 3; ++k) {
+      const int range = k == 0 ? 4 : k == 1 ? 1000 : 1 << 20;
+      const Vec3 offset(uniform_int(rng, -range, range), uniform_int(rng, -range, range),
+                        uniform_int(rng, -range, range));
+      variants.push_back({"translated by range " + std::to_string(range), translate(q, offset)});
+    }
+  }
+  variants.push_back({"time reversed", reverse_time(q), true});
+  if (kind == Kind::vertex_face) {
+    std::array<int, 3> corners = {1, 2, 3};
+    while (std::next_permutation(corners.begin(), corners.end()))
+      variants.push_back({"triangle reordered " + std::to_string(corners[0]) +
+                              std::to_string(corners[1]) + std::to_string(corners[2]),
+                          reorder_points(q, {0, corners[0], corners[1], corners[2]})});
+  } else {
+    const std::array<std::array<int, 4>, 7> orders = {{{1, 0, 2, 3},
+                                                       {0, 1, 3, 2},
+                                                       {1, 0, 3, 2},
+                                                       {2, 3, 0, 1},
+                                                       {3, 2, 0, 1},
+                                                       {2, 3, 1, 0},
+                                                       {3, 2, 1, 0}}};
+    for (const auto& o : orders)
+      variants.push_back({"endpoints reordered " + std::to_string(o[0]) + std::to_string(o[1]) +
+                              std::to_string(o[2]) + std::to_string(o[3]),
+                          reorder_points(q, o)});
+  }
+  // A few compositions of everything at once.
+  for (int k = 0; k < 2; ++k) {
+    std::array<int, 3> axes = {0, 1, 2};
+    std::shuffle(axes.begin(), axes.end(), rng);
+    Query composed = flip_axes(permute_axes(q, axes), uniform_int(rng, 0, 7));
+    if (exact) composed = translate(composed, Vec3(uniform_int(rng, -64, 64), uniform_int(rng, -64, 64),
+                                                   uniform_int(rng, -64, 64)));
+    if (kind == Kind::vertex_face) {
+      std::array<int, 4> corners = {0, 1, 2, 3};
+      std::shuffle(corners.begin() + 1, corners.end(), rng);
+      composed = reorder_points(composed, corners);
+    } else {
+      std::array<int, 4> ends = {0, 1, 2, 3};
+      if (coin(rng)) std::swap(ends[0], ends[1]);
+      if (coin(rng)) std::swap(ends[2], ends[3]);
+      if (coin(rng)) ends = {ends[2], ends[3], ends[0], ends[1]};
+      composed = reorder_points(composed, ends);
+    }
+    const bool reversed = coin(rng);
+    if (reversed) composed = reverse_time(composed);
+    variants.push_back({"composed " + std::to_string(k), composed, reversed});
+  }
+  return variants;
+}
+
+// ---------------------------------------------------------------------------
+// Power-of-two scaling leaves decisions and TOI bit-identical.
+
+// Zero-area triangles for the tests that run each query many times.
+constexpr double kFewSegments = 0.01;
+
+// Random queries for the scaling test: constructed crossings, near misses
+// (a crossing shifted by 1e-1 .. 1e-12 of its size), near-coplanar queries
+// (all points within 1e-6 .. 0 of the plane z = 0) and clear misses.
+Query random_scaling_query(Rng& rng, Kind kind, int family) {
+  const PointMaker point = random_point_maker(rng, false);
+  switch (family) {
+    case 0:
+      return random_contact(rng, kind, point, kFewSegments).query;
+    case 1: {
+      Query q = random_contact(rng, kind, point, kFewSegments).query;
+      const Vec3 direction(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+      const Vec3 shift = direction * std::pow(10.0, -uniform(rng, 1, 12)) * diameter(q);
+      for (int index : moving_points(kind)) q.points[index] += shift;
+      return q;
+    }
+    case 2: {
+      static const double heights[] = {0, 1e-15, 1e-12, 1e-9, 1e-6};
+      const double height = heights[uniform_int(rng, 0, 4)];
+      PointMaker planar = point;
+      planar.planar = true;
+      Query q = coin(rng) ? random_contact(rng, kind, planar, kFewSegments).query
+                          : random_clear_miss(rng, kind, planar);
+      for (Vec3& x : q.points) x[2] = height * uniform(rng, -1, 1);
+      return q;
+    }
+    default:
+      return random_clear_miss(rng, kind, point);
+  }
+}
+
+constexpr int kScalingQueries = 200;
+
+void check_scaling(Kind kind, std::uint64_t seed) {
+  Rng rng(seed);
+  const int exponents[] = {-500, -200, -20, 7, 100, 500};
+  int hits = 0;
+  for (int n = 0; n < kScalingQueries; ++n) {
+    const Query q = random_scaling_query(rng, kind, n % 4);
+    for (Mode mode : {Mode::conservative, Mode::fast}) {
+      const QueryResult base = run(kind, q, mode);
+      hits += base.hit;
+      for (int exponent : exponents) {
+        const QueryResult result = run(kind, scaled(q, exponent), mode);
+        EXPECT_EQ(result.hit, base.hit)
+            << batchccd::to_string(mode) << ", scaled by 2^" << exponent << ": "
+            << describe(kind, q);
+        EXPECT_EQ(result.toi, base.toi)
+            << batchccd::to_string(mode) << ", scaled by 2^" << exponent << ": "
+            << describe(kind, q);
+        EXPECT_EQ(result.status, base.status);
+      }
+    }
+  }
+  // The mix must contain both answers, or the test proves little.
+  EXPECT_GT(hits, kScalingQueries / 2);
+  EXPECT_LT(hits, 2 * kScalingQueries - kScalingQueries / 2);
+}
+
+TEST(PropertiesScaling, PowerOfTwoScalingIsBitIdenticalVertexFace) {
+  check_scaling(Kind::vertex_face, 0x5ca1e0001);
+}
+
+TEST(PropertiesScaling, PowerOfTwoScalingIsBitIdenticalEdgeEdge) {
+  check_scaling(Kind::edge_edge, 0x5ca1e0002);
+}
+
+// ---------------------------------------------------------------------------
+// Constructed contacts are found, no later than the built contact.
+
+void check_constructed_contacts(Kind kind, std::uint64_t seed) {
+  Rng rng(seed);
+  for (int n = 0; n < 1200; ++n) {
+    const PointMaker point = random_point_maker(rng, true);
+    const Contact contact = random_contact(rng, kind, point);
+    // Any power of two keeps the contact exact (at worst subnormal with few
+    // bits); within double range.
+    const int exponent = n % 3 == 0 ? uniform_int(rng, -1000, 1000) : 0;
+    const Query q = scaled(contact.query, exponent);
+    const QueryResult r = run(kind, q);
+    EXPECT_EQ(r.status, Status::ok);
+    EXPECT_TRUE(r.hit) << "missed a contact at t = " << contact.time << ": " << describe(kind, q);
+    if (r.hit) {
+      EXPECT_GE(r.toi, 0.0);
+      EXPECT_LE(r.toi, contact.time + 1e-12)
+          << "toi after a contact at t = " << contact.time << ": " << describe(kind, q);
+    }
+  }
+}
+
+TEST(PropertiesNoFalseNegative, ConstructedVertexFaceContactsAreFound) {
+  check_constructed_contacts(Kind::vertex_face, 0xc0ac7001);
+}
+
+TEST(PropertiesNoFalseNegative, ConstructedEdgeEdgeContactsAreFound) {
+  check_constructed_contacts(Kind::edge_edge, 0xc0ac7002);
+}
+
+// ---------------------------------------------------------------------------
+// Equivalent descriptions: a hit stays a hit, a clear miss stays a miss.
+
+void check_equivalent_hits(Kind kind, std::uint64_t seed) {
+  Rng rng(seed);
+  for (int n = 0; n < 100; ++n) {
+    const PointMaker point = random_point_maker(rng, true);
+    const Contact contact = random_contact(rng, kind, point, kFewSegments);
+    const QueryResult original = run(kind, contact.query);
+    ASSERT_TRUE(original.hit) << describe(kind, contact.query);
+    for (const Variant& variant : equivalent_variants(rng, kind, contact.query, true)) {
+      const QueryResult r = run(kind, variant.query);
+      EXPECT_EQ(r.status, Status::ok);
+      EXPECT_TRUE(r.hit) << variant.name << " turned a collision into a miss: "
+                         << describe(kind, variant.query) << "\n  original: "
+                         << describe(kind, contact.query);
+      // Time reversal maps the built contact at t to 1 - t; the first contact
+      // of the reversed motion is no later than that (not compared with the
+      // forward TOI: reversal maps the first contact to the last).
+      const double contact_time = variant.time_reversed ? 1 - contact.time : contact.time;
+      if (r.hit) {
+        EXPECT_LE(r.toi, contact_time + 1e-12)
+            << variant.name << ": toi after a contact at t = " << contact_time << ": "
+            << describe(kind, variant.query);
+      }
+    }
+  }
+}
+
+void check_equivalent_misses(Kind kind, std::uint64_t seed) {
+  Rng rng(seed);
+  for (int n = 0; n < 150; ++n) {
+    const PointMaker point = random_point_maker(rng, true);
+    const Query q = random_clear_miss(rng, kind, point);
+    const QueryResult original = run(kind, q);
+    EXPECT_FALSE(original.hit) << "false positive on a clear miss: " << describe(kind, q);
+    for (const Variant& variant : equivalent_variants(rng, kind, q, true)) {
+      const QueryResult r = run(kind, variant.query);
+      EXPECT_EQ(r.status, Status::ok);
+      EXPECT_FALSE(r.hit) << variant.name << " turned a clear miss into a hit (toi " << r.toi
+                          << "): " << describe(kind, variant.query);
+      EXPECT_EQ(r.toi, kInfinity);
+    }
+  }
+}
+
+TEST(PropertiesEquivalence, VertexFaceHitsStayHits) {
+  check_equivalent_hits(Kind::vertex_face, 0xe9a1001);
+}
+
+TEST(PropertiesEquivalence, EdgeEdgeHitsStayHits) {
+  check_equivalent_hits(Kind::edge_edge, 0xe9a1002);
+}
+
+TEST(PropertiesEquivalence, VertexFaceClearMissesStayMisses) {
+  check_equivalent_misses(Kind::vertex_face, 0xe9a1003);
+}
+
+TEST(PropertiesEquivalence, EdgeEdgeClearMissesStayMisses) {
+  check_equivalent_misses(Kind::edge_edge, 0xe9a1004);
+}
+
+// ---------------------------------------------------------------------------
+// Extreme magnitudes: every mode returns a well-formed answer.
+
+// sign * [1, 2) * 2^e with e in [-997, 997]: about 1e-300 .. 1e300.
+double wild_coordinate(Rng& rng) {
+  const double magnitude = std::ldexp(uniform(rng, 1, 2), uniform_int(rng, -997, 997));
+  return coin(rng) ? magnitude : -magnitude;
+}
+
+Query random_wild_query(Rng& rng, Kind kind, int family) {
+  Query q;
+  switch (family) {
+    case 0:  // every coordinate its own magnitude
+      for (Vec3& x : q.points) x = Vec3(wild_coordinate(rng), wild_coordinate(rng), wild_coordinate(rng));
+      break;
+    case 1: {  // one magnitude for the query, coordinates spread around it
+      const int base = uniform_int(rng, -950, 950);
+      for (Vec3& x : q.points)
+        for (int axis = 0; axis < 3; ++axis)
+          x[axis] = std::ldexp(uniform(rng, -1, 1), base + uniform_int(rng, -40, 40));
+      break;
+    }
+    case 2: {  // a contact scaled to an extreme, with a few coordinates made wild
+      const PointMaker point = random_point_maker(rng, false);
+      q = scaled(random_contact(rng, kind, point).query, uniform_int(rng, -1000, 1000));
+      for (int k = uniform_int(rng, 0, 3); k > 0; --k)
+        q.points[uniform_int(rng, 0, 7)][uniform_int(rng, 0, 2)] = wild_coordinate(rng);
+      break;
+    }
+    default:  // wild coordinates mixed with exact zeros and shared points
+      for (Vec3& x : q.points)
+        for (int axis = 0; axis < 3; ++axis) x[axis] = coin(rng, 0.3) ? 0.0 : wild_coordinate(rng);
+      for (int k = uniform_int(rng, 0, 3); k > 0; --k)
+        q.points[uniform_int(rng, 0, 7)] = q.points[uniform_int(rng, 0, 7)];
+      break;
+  }
+  return q;
+}
+
+void check_extreme_magnitudes(Kind kind, std::uint64_t seed) {
+  Rng rng(seed);
+  for (int n = 0; n < 800; ++n) {
+    const Query q = random_wild_query(rng, kind, n % 4);
+    for (Mode mode : {Mode::conservative, Mode::fast, Mode::cubic}) {
+      const QueryResult r = run(kind, q, mode);
+      const std::string where = std::string(batchccd::to_string(mode)) + ": " + describe(kind, q);
+      EXPECT_EQ(r.status, Status::ok) << where;
+      EXPECT_FALSE(std::isnan(r.toi)) << where;
+      if (r.hit) {
+        EXPECT_GE(r.toi, 0.0) << where;
+        EXPECT_LE(r.toi, 1.0) << where;
+      } else {
+        EXPECT_EQ(r.toi, kInfinity) << where;
+      }
+    }
+  }
+}
+
+TEST(PropertiesExtremeMagnitudes, VertexFaceWellFormedInEveryMode) {
+  check_extreme_magnitudes(Kind::vertex_face, 0xe7e0001);
+}
+
+TEST(PropertiesExtremeMagnitudes, EdgeEdgeWellFormedInEveryMode) {
+  check_extreme_magnitudes(Kind::edge_edge, 0xe7e0002);
+}
+
+// ---------------------------------------------------------------------------
+// Non-finite input.
+
+TEST(PropertiesNonFinite, NanOrInfiniteCoordinateIsInvalidInputAndHit) {
+  const double bad_values[] = {std::numeric_limits<double>::quiet_NaN(), kInfinity, -kInfinity};
+  Rng rng(0xbad0001);
+  for (Kind kind : {Kind::vertex_face, Kind::edge_edge}) {
+    for (int point = 0; point < 8; ++point)
+      for (int axis = 0; axis < 3; ++axis)
+        for (double bad : bad_values) {
+          // Both a clear miss and a hit as the otherwise finite query.
+          const PointMaker maker;
+          const Query misses = random_clear_miss(rng, kind, maker);
+          const Query hits = random_contact(rng, kind, maker).query;
+          for (Query q : {misses, hits}) {
+            q.points[point][axis] = bad;
+            for (Mode mode : {Mode::conservative, Mode::fast, Mode::cubic}) {
+              const QueryResult r = run(kind, q, mode);
+              EXPECT_EQ(r.status, Status::invalid_input)
+                  << batchccd::to_string(mode) << ": " << describe(kind, q);
+              EXPECT_TRUE(r.hit) << batchccd::to_string(mode) << ": " << describe(kind, q);
+            }
+          }
+        }
+  }
+}
+
+TEST(PropertiesNonFinite, EveryCoordinateNonFinite) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Query q;
+  for (Vec3& x : q.points) x = Vec3(nan, kInfinity, -kInfinity);
+  for (Kind kind : {Kind::vertex_face, Kind::edge_edge})
+    for (Mode mode : {Mode::conservative, Mode::fast, Mode::cubic}) {
+      const QueryResult r = run(kind, q, mode);
+      EXPECT_EQ(r.status, Status::invalid_input);
+      EXPECT_TRUE(r.hit);
+    }
+}
+
+}  // namespace
