@@ -104,7 +104,16 @@ Query gather(const MeshView& mesh, const std::array<int, 4>& vertices) {
 
 }  // namespace
 
+Isa resolve_isa(Isa requested) {
+  // Only the scalar reference path exists so far; the lane kernels come with
+  // the SIMD issue.
+  if (requested == Isa::automatic || requested == Isa::scalar) return Isa::scalar;
+  throw std::invalid_argument(std::string("instruction set ") + to_string(requested) +
+                              " is not available in this build (available: scalar)");
+}
+
 BatchResult batch_ccd(Kind kind, std::span<const Query> queries, const Options& options) {
+  resolve_isa(options.isa);
   BatchResult batch;
   if (options.per_candidate_results) batch.results.resize(queries.size());
   run_queries(kind, queries.size(), [&](std::size_t i) -> const Query& { return queries[i]; },
@@ -113,6 +122,7 @@ BatchResult batch_ccd(Kind kind, std::span<const Query> queries, const Options& 
 }
 
 BatchResult mesh_ccd(const MeshView& mesh, const Candidates& candidates, const Options& options) {
+  resolve_isa(options.isa);
   check_mesh(mesh, candidates);
   const std::size_t vertex_face = options.vertex_face ? candidates.vertex_face.size() : 0;
   const std::size_t edge_edge = options.edge_edge ? candidates.edge_edge.size() : 0;

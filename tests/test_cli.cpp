@@ -483,6 +483,31 @@ TEST_F(CliTest, InputErrorAmongSeveralStillReportsTheOthers) {
 
 // ---- finding inputs ------------------------------------------------------------
 
+// `run data/*` also names a folder's LICENSE: noted and passed over.
+TEST_F(CliTest, PlainFileThatIsNoCsvIsPassedOverWithANote) {
+  write_file(path("vf/good.csv"), vertex_face_hit_and_miss);
+  write_file(path("LICENSE"), "not a query file\n");
+  const CliRun result = run_cli({"run", "--json", "vf/good.csv", "LICENSE"});
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(lines_of(result.out).size(), 1u);
+  EXPECT_NE(result.err.find("LICENSE: skipped"), std::string::npos) << result.err;
+}
+
+// An instruction set this build lacks is refused, never silently replaced.
+TEST_F(CliTest, UnavailableInstructionSetIsAnError) {
+  write_file(path("vf/good.csv"), vertex_face_hit_and_miss);
+  bool available = true;
+  try {
+    batchccd::resolve_isa(batchccd::Isa::avx2);
+  } catch (const std::invalid_argument&) {
+    available = false;
+  }
+  if (available) GTEST_SKIP() << "avx2 kernels are available";
+  const CliRun result = run_cli({"run", "--isa", "avx2", "vf/good.csv"});
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.err.find("avx2"), std::string::npos) << result.err;
+}
+
 TEST_F(CliTest, KindComesFromThePathOrFromKindOption) {
   write_file(path("edge-edge/a.csv"), edge_edge_hit_and_miss);
   write_file(path("plain/queries_vf.csv"), vertex_face_hit_and_miss);

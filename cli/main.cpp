@@ -1,0 +1,287 @@
+// The `batchccd` executable: command-line parsing only. The work is done by
+// run_inputs (run.hpp) and shown by report_format.hpp.
+
+#include <charconv>
+#include <cstdlib>
+#include <exception>
+#include <iostream>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "batchccd/version.hpp"
+#include "names.hpp"
+#include "report_format.hpp"
+#include "run.hpp"
+
+namespace {
+
+using batchccd::cli::RunSettings;
+using Arguments = std::span<const std::string_view>;
+
+constexpr int exit_success = 0;
+constexpr int exit_input_error = 1;
+constexpr int exit_usage_error = 2;
+
+constexpr std::string_view general_usage =
+    "usage: batchccd COMMAND [options] ...\n"
+    "\n"
+    "Continuous collision detection over batches of vertex-face (vf) and\n"
+    "edge-edge (ee) queries.\n"
+    "\n"
+    "Commands:\n"
+    "  run       evaluate query files and scenes, report counts and timing\n"
+    "\n"
+    "  batchccd --help          this text and every command's options\n"
+    "  batchccd COMMAND --help  one command's options\n"
+    "  batchccd --version       the version\n";
+
+constexpr std::string_view run_usage =
+    "usage: batchccd run [options] INPUT...\n"
+    "\n"
+    "Runs the narrow phase on every INPUT and prints one result per input and\n"
+    "kind: an aligned table with a totals row, or JSON lines with --json.\n"
+    "\n"
+    "INPUT is one of\n"
+    "  a query CSV    8 rows a query; columns x_num,x_den,y_num,y_den,z_num,z_den\n"
+    "                 and optionally truth (0/1)\n"
+    "  a scene        a directory holding t0.ply and t1.ply, with vf.csv, ee.csv\n"
+    "                 and optionally vf_truth.txt, ee_truth.txt; gives a vf and an\n"
+    "                 ee result\n"
+    "  a directory    searched recursively for scenes and for *.csv query files\n"
+    "                 whose path names their kind (or any *.csv with --kind);\n"
+    "                 run in sorted path order\n"
+    "\n"
+    "Options:\n"
+    "  --kind vf|ee       kind of a query file whose path does not say: a path\n"
+    "                     with \"vertex-face\" or \"vf\" is vf, with \"edge-edge\" or\n"
+    "                     \"ee\" is ee\n"
+    "  --truth FILE       ground truth for query files without a truth column (or\n"
+    "                     replacing it): a JSON array of booleans or one 0/1 a\n"
+    "                     line; needs a single INPUT\n"
+    "  --mode MODE        conservative (default): certified, never misses a\n"
+    "                     contact; fast: the same in plain double arithmetic;\n"
+    "                     cubic: the unfiltered cubic solver (the baseline)\n"
+    "  --threads N        worker threads, a positive integer (default: all)\n"
+    "  --isa ISA          auto (default), scalar (the reference path), sse4,\n"
+    "                     avx2, avx512\n"
+    "  --json             one JSON object per input and kind on stdout, fields\n"
+    "                     input, kind, mode, isa (the one used), threads,\n"
+    "                     queries, hits, positives, false_positives,\n"
+    "                     false_negatives (null without truth), culled, seconds\n"
+    "                     (narrow phase alone, reading excluded),\n"
+    "                     queries_per_second\n"
+    "  --out FILE         per-query results, one \"hit,toi\" line a query (hit 0/1,\n"
+    "                     toi \"inf\" without a hit) in input order, all inputs in\n"
+    "                     the order run; a scene's vf candidates come before its\n"
+    "                     ee ones; replaced atomically\n"
+    "  -h, --help         this text\n"
+    "\n"
+    "Exit status: 0 success; 1 an input could not be read (reported on stderr,\n"
+    "the other inputs still run); 2 a bad command line.\n";
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct RunCommandLine {
+  RunSettings settings;
+  bool json = false;
+  bool help = false;
+  std::optional<std::filesystem::path> out;
+};
+
+template <class Enum, std::size_t Count>
+Enum parse_enum(std::string_view option, std::string_view value,
+                const batchccd::cli::NameTable<Enum, Count>& names) {
+  if (auto parsed = batchccd::cli::from_name(names, value)) return *parsed;
+  std::string accepted;
+  for (const auto& entry : names) {
+    if (!accepted.empty()) accepted += '|';
+    accepted += entry.first;
+  }
+  throw UsageError("bad " + std::string(option) + " value '" + std::string(value) +
+                   "' (expected " + accepted + ")");
+}
+
+int parse_threads(std::string_view value) {
+  int threads = 0;
+  const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), threads);
+  if (error != std::errc() || end != value.data() + value.size() || threads <= 0) {
+    throw UsageError("--threads needs a positive integer, not '" + std::string(value) + "'");
+  }
+  return threads;
+}
+
+// Reads the arguments of `--name value` and `--name=value` one at a time.
+class ArgumentCursor {
+ public:
+  explicit ArgumentCursor(Arguments arguments) : arguments_(arguments) {}
+
+  bool done() const { return next_ >= arguments_.size(); }
+
+  // The next argument; an option's inline "=value" is kept for value().
+  std::string_view take() {
+    std::string_view argument = arguments_[next_++];
+    inline_value_.reset();
+    if (argument.starts_with("--")) {
+      if (const auto equals = argument.find('='); equals != std::string_view::npos) {
+        inline_value_ = argument.substr(equals + 1);
+        argument = argument.substr(0, equals);
+      }
+    }
+    return argument;
+  }
+
+  std::string_view value(std::string_view option) {
+    if (inline_value_) return *std::exchange(inline_value_, std::nullopt);
+    if (done()) throw UsageError(std::string(option) + " needs a value");
+    return arguments_[next_++];
+  }
+
+  // An option that takes no value must not have been given one.
+  void expect_no_value(std::string_view option) const {
+    if (inline_value_) throw UsageError(std::string(option) + " takes no value");
+  }
+
+ private:
+  Arguments arguments_;
+  std::size_t next_ = 0;
+  std::optional<std::string_view> inline_value_;
+};
+
+void parse_run_option(std::string_view option, ArgumentCursor& cursor, RunCommandLine& line) {
+  using namespace batchccd::cli;
+  RunSettings& settings = line.settings;
+  if (option == "--help" || option == "-h") {
+    cursor.expect_no_value(option);
+    line.help = true;
+  } else if (option == "--json") {
+    cursor.expect_no_value(option);
+    line.json = true;
+  } else if (option == "--kind") {
+    settings.kind = parse_enum(option, cursor.value(option), kind_names);
+  } else if (option == "--mode") {
+    settings.options.mode = parse_enum(option, cursor.value(option), mode_names);
+  } else if (option == "--isa") {
+    settings.options.isa = parse_enum(option, cursor.value(option), isa_names);
+  } else if (option == "--threads") {
+    settings.options.threads = parse_threads(cursor.value(option));
+  } else if (option == "--truth") {
+    settings.truth = std::filesystem::path(cursor.value(option));
+  } else if (option == "--out") {
+    line.out = std::filesystem::path(cursor.value(option));
+  } else {
+    throw UsageError("unknown option '" + std::string(option) + "'");
+  }
+}
+
+RunCommandLine parse_run_arguments(Arguments arguments) {
+  RunCommandLine line;
+  ArgumentCursor cursor(arguments);
+  bool options_ended = false;  // after "--" everything is an INPUT
+  while (!cursor.done()) {
+    const std::string_view argument = cursor.take();
+    if (!options_ended && argument == "--") {
+      options_ended = true;
+    } else if (!options_ended && argument.size() > 1 && argument.starts_with('-')) {
+      parse_run_option(argument, cursor, line);
+    } else {
+      line.settings.inputs.emplace_back(argument);
+    }
+  }
+  if (line.help) return line;
+  if (line.settings.inputs.empty()) throw UsageError("missing INPUT");
+  if (line.settings.truth && line.settings.inputs.size() > 1) {
+    throw UsageError("--truth needs a single INPUT");
+  }
+  line.settings.keep_results = line.out.has_value();
+  return line;
+}
+
+void print_reports(const RunCommandLine& line, const batchccd::cli::RunOutcome& outcome) {
+  if (line.json) {
+    for (const auto& report : outcome.reports) std::cout << batchccd::cli::json_line(report) << '\n';
+  } else {
+    batchccd::cli::print_table(std::cout, outcome.reports);
+  }
+  std::cout.flush();
+}
+
+int run_command(Arguments arguments) {
+  RunCommandLine line;
+  try {
+    line = parse_run_arguments(arguments);
+  } catch (const UsageError& error) {
+    std::cerr << "batchccd run: " << error.what() << "\n\n" << run_usage;
+    return exit_usage_error;
+  }
+  if (line.help) {
+    std::cout << run_usage;
+    return exit_success;
+  }
+  batchccd::cli::RunOutcome outcome = batchccd::cli::run_inputs(line.settings, std::cerr);
+  print_reports(line, outcome);
+  if (line.out) {
+    try {
+      batchccd::cli::write_results_file(*line.out, outcome.reports);
+    } catch (const std::exception& error) {
+      std::cerr << "batchccd: error: " << error.what() << '\n';
+      outcome.any_error = true;
+    }
+  }
+  return outcome.any_error ? exit_input_error : exit_success;
+}
+
+// New commands (demo, report) join this table.
+struct Command {
+  std::string_view name;
+  std::string_view usage;
+  int (*entry)(Arguments arguments);
+};
+
+constexpr Command commands[] = {
+    {"run", run_usage, run_command},
+};
+
+void print_full_help() {
+  std::cout << general_usage;
+  for (const Command& command : commands) std::cout << "\n" << command.usage;
+}
+
+int dispatch(Arguments arguments) {
+  if (arguments.empty()) {
+    std::cerr << general_usage;
+    return exit_usage_error;
+  }
+  const std::string_view first = arguments.front();
+  if (first == "--help" || first == "-h" || first == "help") {
+    print_full_help();
+    return exit_success;
+  }
+  if (first == "--version") {
+    std::cout << "batchccd " << BATCHCCD_VERSION << '\n';
+    return exit_success;
+  }
+  for (const Command& command : commands) {
+    if (command.name == first) return command.entry(arguments.subspan(1));
+  }
+  std::cerr << "batchccd: unknown command '" << first << "'\n\n" << general_usage;
+  return exit_usage_error;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::vector<std::string_view> arguments(argv + 1, argv + argc);
+  try {
+    return dispatch(arguments);
+  } catch (const std::exception& error) {
+    // Unexpected failures (out of memory, a library bug) still end cleanly.
+    std::cerr << "batchccd: internal error: " << error.what() << '\n';
+    return exit_input_error;
+  }
+}

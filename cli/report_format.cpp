@@ -1,0 +1,267 @@
+#include "report_format.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <ostream>
+#include <stdexcept>
+#include <system_error>
+#include <utility>
+
+#include <unistd.h>
+
+#include "names.hpp"
+
+namespace batchccd::cli {
+
+namespace {
+
+// Length of the well-formed UTF-8 sequence starting at `at`, 0 when the bytes
+// there are not one (overlong forms, surrogates and values past U+10FFFF
+// included).
+std::size_t utf8_sequence_length(std::string_view text, std::size_t at) {
+  const auto byte = [&](std::size_t index) { return static_cast<unsigned char>(text[index]); };
+  const unsigned lead = byte(at);
+  if (lead < 0x80) return 1;
+  std::size_t length = 0;
+  unsigned second_low = 0x80, second_high = 0xBF;
+  if (lead >= 0xC2 && lead <= 0xDF) {
+    length = 2;
+  } else if (lead >= 0xE0 && lead <= 0xEF) {
+    length = 3;
+    if (lead == 0xE0) second_low = 0xA0;   // overlong
+    if (lead == 0xED) second_high = 0x9F;  // surrogates
+  } else if (lead >= 0xF0 && lead <= 0xF4) {
+    length = 4;
+    if (lead == 0xF0) second_low = 0x90;   // overlong
+    if (lead == 0xF4) second_high = 0x8F;  // past U+10FFFF
+  } else {
+    return 0;
+  }
+  if (at + length > text.size()) return 0;
+  if (byte(at + 1) < second_low || byte(at + 1) > second_high) return 0;
+  for (std::size_t index = at + 2; index < at + length; ++index) {
+    if ((byte(index) & 0xC0) != 0x80) return 0;
+  }
+  return length;
+}
+
+void append_escaped_ascii(std::string& out, char character) {
+  switch (character) {
+    case '"': out += "\\\""; return;
+    case '\\': out += "\\\\"; return;
+    case '\b': out += "\\b"; return;
+    case '\f': out += "\\f"; return;
+    case '\n': out += "\\n"; return;
+    case '\r': out += "\\r"; return;
+    case '\t': out += "\\t"; return;
+    default: break;
+  }
+  if (static_cast<unsigned char>(character) < 0x20) {
+    char escaped[8];
+    std::snprintf(escaped, sizeof escaped, "\\u%04x", static_cast<unsigned>(character));
+    out += escaped;
+  } else {
+    out += character;
+  }
+}
+
+std::string json_number(double value) {
+  return std::isfinite(value) ? round_trip_decimal(value) : "null";  // JSON has no inf
+}
+
+std::string json_count(const std::optional<std::int64_t>& value) {
+  return value ? std::to_string(*value) : "null";
+}
+
+std::string json_name(std::string_view name) { return json_string(name); }
+
+}  // namespace
+
+std::string json_string(std::string_view text) {
+  std::string out = "\"";
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t length = utf8_sequence_length(text, at);
+    if (length == 0) {
+      out += "\\ufffd";
+      at += 1;
+    } else if (length == 1) {
+      append_escaped_ascii(out, text[at]);
+      at += 1;
+    } else {
+      out.append(text.substr(at, length));
+      at += length;
+    }
+  }
+  return out + "\"";
+}
+
+std::string round_trip_decimal(double value) {
+  char buffer[64];
+  const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  if (error != std::errc()) return "nan";  // cannot happen with 64 chars
+  return std::string(buffer, end);
+}
+
+std::string json_line(const InputReport& report) {
+  const std::pair<std::string_view, std::string> fields[] = {
+      {"input", json_string(report.input)},
+      {"kind", json_name(name_of(report.kind))},
+      {"mode", json_name(name_of(report.mode))},
+      {"isa", json_name(name_of(report.isa))},
+      {"threads", std::to_string(report.threads)},
+      {"queries", std::to_string(report.queries)},
+      {"hits", std::to_string(report.hits)},
+      {"positives", json_count(report.positives)},
+      {"false_positives", json_count(report.false_positives)},
+      {"false_negatives", json_count(report.false_negatives)},
+      {"culled", std::to_string(report.culled)},
+      {"seconds", json_number(report.seconds)},
+      {"queries_per_second", json_number(report.queries_per_second())},
+  };
+  std::string line = "{";
+  for (const auto& [name, value] : fields) {
+    if (line.size() > 1) line += ", ";
+    line += json_string(name) + ": " + value;
+  }
+  return line + "}";
+}
+
+// ---- table ----------------------------------------------------------------
+
+namespace {
+
+using Row = std::vector<std::string>;
+
+struct Column {
+  std::string_view header;
+  bool right_aligned;
+};
+
+constexpr Column table_columns[] = {
+    {"input", false},     {"kind", false},      {"queries", true},
+    {"hits", true},       {"positives", true},  {"false_pos", true},
+    {"false_neg", true},  {"culled", true},     {"seconds", true},
+    {"queries/s", true},
+};
+
+std::string fixed(double value, int decimals) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
+  return buffer;
+}
+
+std::string cell(const std::optional<std::int64_t>& value) {
+  return value ? std::to_string(*value) : "-";
+}
+
+Row table_row(const InputReport& report) {
+  return {report.input,
+          std::string(name_of(report.kind)),
+          std::to_string(report.queries),
+          std::to_string(report.hits),
+          cell(report.positives),
+          cell(report.false_positives),
+          cell(report.false_negatives),
+          std::to_string(report.culled),
+          fixed(report.seconds, 6),
+          fixed(report.queries_per_second(), 0)};
+}
+
+// A truth column's total is shown only when every row has it.
+std::optional<std::int64_t> total_of(const std::vector<InputReport>& reports,
+                                     std::optional<std::int64_t> InputReport::*field) {
+  std::int64_t total = 0;
+  for (const InputReport& report : reports) {
+    if (!(report.*field)) return std::nullopt;
+    total += *(report.*field);
+  }
+  return total;
+}
+
+Row totals_row(const std::vector<InputReport>& reports) {
+  InputReport total;
+  for (const InputReport& report : reports) {
+    total.queries += report.queries;
+    total.hits += report.hits;
+    total.culled += report.culled;
+    total.seconds += report.seconds;
+  }
+  total.positives = total_of(reports, &InputReport::positives);
+  total.false_positives = total_of(reports, &InputReport::false_positives);
+  total.false_negatives = total_of(reports, &InputReport::false_negatives);
+  Row row = table_row(total);
+  row[0] = "total";
+  row[1] = "";
+  return row;
+}
+
+std::vector<std::size_t> column_widths(const std::vector<Row>& rows) {
+  std::vector<std::size_t> widths;
+  for (const Column& column : table_columns) widths.push_back(column.header.size());
+  for (const Row& row : rows) {
+    for (std::size_t i = 0; i < row.size(); ++i) widths[i] = std::max(widths[i], row[i].size());
+  }
+  return widths;
+}
+
+void print_row(std::ostream& out, const Row& row, const std::vector<std::size_t>& widths) {
+  std::string line;
+  for (std::size_t i = 0; i < row.size(); ++i) {
+    const std::string padding(widths[i] - row[i].size(), ' ');
+    if (i > 0) line += "  ";
+    line += table_columns[i].right_aligned ? padding + row[i] : row[i] + padding;
+  }
+  while (!line.empty() && line.back() == ' ') line.pop_back();
+  out << line << '\n';
+}
+
+}  // namespace
+
+void print_table(std::ostream& out, const std::vector<InputReport>& reports) {
+  if (reports.empty()) return;
+  // Mode, instruction set and threads are the same for every row of a run.
+  const InputReport& first = reports.front();
+  out << "mode " << name_of(first.mode) << ", isa " << name_of(first.isa) << ", threads "
+      << first.threads << '\n';
+  Row header;
+  for (const Column& column : table_columns) header.emplace_back(column.header);
+  std::vector<Row> rows = {header};
+  for (const InputReport& report : reports) rows.push_back(table_row(report));
+  rows.push_back(totals_row(reports));
+  const std::vector<std::size_t> widths = column_widths(rows);
+  for (const Row& row : rows) print_row(out, row, widths);
+}
+
+// ---- results file ---------------------------------------------------------
+
+std::string result_line(const QueryResult& result) {
+  return std::string(result.hit ? "1," : "0,") + round_trip_decimal(result.toi);
+}
+
+void write_results_file(const std::filesystem::path& file,
+                        const std::vector<InputReport>& reports) {
+  std::filesystem::path temporary = file;
+  temporary += ".tmp-" + std::to_string(::getpid());
+  const auto fail = [&](const std::string& problem) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw std::runtime_error(problem);
+  };
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) fail("cannot create " + temporary.string());
+    for (const InputReport& report : reports) {
+      for (const QueryResult& result : report.results) out << result_line(result) << '\n';
+    }
+    out.close();
+    if (!out) fail("cannot write " + temporary.string());
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, file, error);
+  if (error) fail("cannot rename " + temporary.string() + " to " + file.string() + ": " +
+                  error.message());
+}
+
+}  // namespace batchccd::cli

@@ -1,0 +1,224 @@
+#include "run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <functional>
+#include <ostream>
+#include <span>
+#include <stdexcept>
+#include <thread>
+#include <utility>
+
+namespace batchccd::cli {
+
+namespace fs = std::filesystem;
+
+double InputReport::queries_per_second() const {
+  return seconds > 0 ? static_cast<double>(queries) / seconds : 0.0;
+}
+
+namespace {
+
+// One unit of work found behind a command-line input.
+struct FoundInput {
+  fs::path path;
+  bool is_scene = false;
+};
+
+bool is_query_file_candidate(const fs::directory_entry& entry,
+                             const std::optional<Kind>& fallback_kind) {
+  return entry.is_regular_file() && entry.path().extension() == ".csv" &&
+         (kind_from_path(entry.path()) || fallback_kind);
+}
+
+// Scenes are taken whole: their own vf.csv, ee.csv and queries_*.csv are
+// part of the scene, not query files of their own.
+std::vector<FoundInput> find_inputs_in_directory(const fs::path& root,
+                                                 const std::optional<Kind>& fallback_kind) {
+  std::vector<FoundInput> found;
+  for (auto entry = fs::recursive_directory_iterator(root);
+       entry != fs::recursive_directory_iterator(); ++entry) {
+    if (entry->is_directory() && is_scene_directory(entry->path())) {
+      found.push_back({entry->path(), true});
+      entry.disable_recursion_pending();
+    } else if (is_query_file_candidate(*entry, fallback_kind)) {
+      found.push_back({entry->path(), false});
+    }
+  }
+  // Directory iteration order is the file system's: sort for stable output.
+  std::sort(found.begin(), found.end(),
+            [](const FoundInput& a, const FoundInput& b) { return a.path < b.path; });
+  if (found.empty()) {
+    throw InputError(root.string(), 0,
+                     "no query files (*.csv under a path naming vertex-face/vf or "
+                     "edge-edge/ee) and no scenes found");
+  }
+  return found;
+}
+
+std::vector<FoundInput> expand_input(const fs::path& input,
+                                     const std::optional<Kind>& fallback_kind) {
+  if (!fs::exists(input)) throw InputError(input.string(), 0, "no such file or directory");
+  if (is_scene_directory(input)) return {{input, true}};
+  if (fs::is_directory(input)) return find_inputs_in_directory(input, fallback_kind);
+  return {{input, false}};
+}
+
+Kind kind_of_query_file(const fs::path& file, const std::optional<Kind>& fallback_kind) {
+  if (auto named = kind_from_path(file)) return *named;
+  if (fallback_kind) return *fallback_kind;
+  throw InputError(file.string(), 0,
+                   "the path names no kind (vertex-face/vf or edge-edge/ee): use --kind");
+}
+
+int threads_asked(const Options& options) {
+  if (options.threads > 0) return options.threads;
+  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+Options options_for_call(const RunSettings& settings, bool truth_known) {
+  Options options = settings.options;
+  // Per-query results cost memory: ask for them only when they are used.
+  options.per_candidate_results = settings.keep_results || truth_known;
+  return options;
+}
+
+struct TimedResult {
+  BatchResult result;
+  double seconds = 0;
+};
+
+TimedResult timed(const std::function<BatchResult()>& narrow_phase) {
+  const auto start = std::chrono::steady_clock::now();
+  BatchResult result = narrow_phase();
+  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+  return {std::move(result), elapsed.count()};
+}
+
+void compare_with_truth(const std::vector<bool>& truth, InputReport& report) {
+  std::int64_t positives = 0, false_positives = 0, false_negatives = 0;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    const bool hit = report.results[i].hit;
+    positives += truth[i] ? 1 : 0;
+    false_positives += (hit && !truth[i]) ? 1 : 0;
+    false_negatives += (!hit && truth[i]) ? 1 : 0;
+  }
+  report.positives = positives;
+  report.false_positives = false_positives;
+  report.false_negatives = false_negatives;
+}
+
+InputReport make_report(std::string input, Kind kind, std::size_t query_count,
+                        TimedResult timed_result, const Options& options,
+                        const std::optional<std::vector<bool>>& truth) {
+  InputReport report;
+  report.input = std::move(input);
+  report.kind = kind;
+  report.mode = options.mode;
+  report.isa = resolve_isa(options.isa);
+  report.threads = threads_asked(options);
+  report.queries = static_cast<std::int64_t>(query_count);
+  report.hits = timed_result.result.counters.hits;
+  report.culled = timed_result.result.counters.culled;
+  report.seconds = timed_result.seconds;
+  report.results = std::move(timed_result.result.results);
+  if (options.per_candidate_results && report.results.size() != query_count) {
+    throw std::runtime_error(report.input + ": the library returned " +
+                             std::to_string(report.results.size()) + " results for " +
+                             std::to_string(query_count) + " queries");
+  }
+  if (truth) compare_with_truth(*truth, report);
+  return report;
+}
+
+std::vector<bool> read_truth_for(const fs::path& truth_file, const QueryFile& queries) {
+  std::vector<bool> truth = read_truth(truth_file);
+  if (truth.size() != queries.queries.size()) {
+    throw InputError(truth_file.string(), 0,
+                     "has " + std::to_string(truth.size()) + " entries but " + queries.path +
+                         " has " + std::to_string(queries.queries.size()) + " queries");
+  }
+  return truth;
+}
+
+std::vector<InputReport> run_query_file(const fs::path& file, const RunSettings& settings) {
+  const Kind kind = kind_of_query_file(file, settings.kind);
+  QueryFile queries = read_query_csv(file, kind);
+  if (settings.truth) queries.truth = read_truth_for(*settings.truth, queries);
+  const Options options = options_for_call(settings, queries.truth.has_value());
+  TimedResult timed_result =
+      timed([&] { return batch_ccd(kind, queries.queries, options); });
+  return {make_report(file.string(), kind, queries.queries.size(), std::move(timed_result),
+                      options, queries.truth)};
+}
+
+InputReport run_scene_kind(const Scene& scene, Kind kind, const RunSettings& settings) {
+  const bool vertex_face = kind == Kind::vertex_face;
+  const auto& truth = vertex_face ? scene.vertex_face_truth : scene.edge_edge_truth;
+  const std::size_t count = vertex_face ? scene.candidates.vertex_face.size()
+                                        : scene.candidates.edge_edge.size();
+  // One kind per call, so that time and counters are per kind.
+  Options options = options_for_call(settings, truth.has_value());
+  options.vertex_face = vertex_face;
+  options.edge_edge = !vertex_face;
+  const MeshView mesh{scene.positions_t0, scene.positions_t1, scene.faces};
+  TimedResult timed_result = timed([&] { return mesh_ccd(mesh, scene.candidates, options); });
+  return make_report(scene.path, kind, count, std::move(timed_result), options, truth);
+}
+
+std::vector<InputReport> run_scene(const fs::path& directory, const RunSettings& settings) {
+  if (settings.truth) {
+    throw InputError(directory.string(), 0,
+                     "--truth is for query files; a scene has vf_truth.txt and ee_truth.txt");
+  }
+  Scene scene = read_scene(directory);
+  scene.path = directory.string();  // report the path as given
+  return {run_scene_kind(scene, Kind::vertex_face, settings),
+          run_scene_kind(scene, Kind::edge_edge, settings)};
+}
+
+// Readers name file and line in their message; other failures get the input.
+void report_error(std::ostream& errors, const fs::path& input, const std::exception& error) {
+  errors << "batchccd: error: ";
+  if (dynamic_cast<const InputError*>(&error) == nullptr) errors << input.string() << ": ";
+  errors << error.what() << '\n';
+}
+
+// Runs `step`; a failure is reported and marks the outcome, and the caller
+// goes on with the next input.
+void run_guarded(const fs::path& input, RunOutcome& outcome, std::ostream& errors,
+                 const std::function<void()>& step) {
+  try {
+    step();
+  } catch (const std::exception& error) {
+    report_error(errors, input, error);
+    outcome.any_error = true;
+  }
+}
+
+}  // namespace
+
+RunOutcome run_inputs(const RunSettings& settings, std::ostream& errors) {
+  RunOutcome outcome;
+  for (const fs::path& input : settings.inputs) {
+    // A shell glob over a data folder also names its LICENSE or README: a
+    // plain file that is no CSV is passed over, said once, not an error.
+    if (fs::is_regular_file(input) && input.extension() != ".csv") {
+      errors << "note: " << input.string() << ": skipped, not a query file (*.csv) or a scene\n";
+      continue;
+    }
+    std::vector<FoundInput> found;
+    run_guarded(input, outcome, errors, [&] { found = expand_input(input, settings.kind); });
+    for (const FoundInput& item : found) {
+      run_guarded(item.path, outcome, errors, [&] {
+        std::vector<InputReport> reports = item.is_scene ? run_scene(item.path, settings)
+                                                         : run_query_file(item.path, settings);
+        for (InputReport& report : reports) outcome.reports.push_back(std::move(report));
+      });
+    }
+  }
+  return outcome;
+}
+
+}  // namespace batchccd::cli

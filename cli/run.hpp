@@ -1,0 +1,63 @@
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "batchccd/batchccd.hpp"
+
+// `batchccd run` without its command line: find the inputs, read them, run
+// the narrow phase on each and collect one report per input and kind. The
+// executable, the tests and later commands all go through run_inputs.
+namespace batchccd::cli {
+
+struct RunSettings {
+  // Query CSVs, directories searched recursively, scene directories; run in
+  // this order.
+  std::vector<std::filesystem::path> inputs;
+  // --kind: the kind of a query file whose path names none.
+  std::optional<Kind> kind;
+  // --truth: ground truth for query files (replaces a truth column).
+  std::optional<std::filesystem::path> truth;
+  // mode, isa and threads as given; the per-call switches are set per input.
+  Options options;
+  // Keep every query's result in InputReport::results (--out needs them).
+  bool keep_results = false;
+};
+
+// The outcome of one input and one kind (a scene gives two).
+struct InputReport {
+  std::string input;  // the path as given or as found under a directory
+  Kind kind = Kind::vertex_face;
+  Mode mode = Mode::conservative;
+  Isa isa = Isa::scalar;  // the instruction set actually used
+  int threads = 1;        // worker threads asked of the library
+  std::int64_t queries = 0;
+  std::int64_t hits = 0;
+  std::int64_t culled = 0;
+  // Known only when the input has ground truth.
+  std::optional<std::int64_t> positives;
+  std::optional<std::int64_t> false_positives;
+  std::optional<std::int64_t> false_negatives;
+  double seconds = 0;  // the narrow-phase call alone, reading excluded
+  // One per query in input order (a scene: one kind's candidates), filled
+  // when RunSettings::keep_results is set or the input has ground truth.
+  std::vector<QueryResult> results;
+
+  // 0 when nothing was timed.
+  double queries_per_second() const;
+};
+
+struct RunOutcome {
+  std::vector<InputReport> reports;  // in the order processed
+  bool any_error = false;            // some input failed; told on `errors`
+};
+
+// Runs every input; an input that fails is reported on `errors` (one line
+// naming the file and, where there is one, the line) and the rest still run.
+RunOutcome run_inputs(const RunSettings& settings, std::ostream& errors);
+
+}  // namespace batchccd::cli
