@@ -125,7 +125,9 @@ TEST(SignFilter, CertifiedCullsAreASubsetOfPlainCulls) {
       const ScaledQuery scaled = scale_query(kind, query);
       const bool certified = sign_filter_culls(scaled, true);
       certified_culls += certified;
-      if (certified) EXPECT_TRUE(sign_filter_culls(scaled, false));
+      if (certified) {
+        EXPECT_TRUE(sign_filter_culls(scaled, false));
+      }
     }
   }
   EXPECT_GT(certified_culls, 0);
