@@ -1,16 +1,22 @@
 #include "batchccd/batch.hpp"
 
 #include <algorithm>
+#include <numeric>
 #include <stdexcept>
+#include <vector>
 #include <string>
 
 #include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/partitioner.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "mesh_validation.hpp"
 #include "reference/reference.hpp"
+#include "simd/filter.hpp"
+#include "simd/sources.hpp"
 
 namespace batchccd {
 namespace {
@@ -20,31 +26,56 @@ struct Partial {
   double earliest_toi = std::numeric_limits<double>::infinity();
 };
 
-// Evaluates queries [0, count) of one kind, writing results[offset + i] when
-// per-candidate results are asked for. query_at(i) builds the i-th query.
-template <class QueryAt>
-void run_queries(Kind kind, std::size_t count, const QueryAt& query_at, const Options& options,
-                 std::size_t offset, BatchResult& batch) {
+// Candidates a worker filters at once: the survivor list stays in cache and
+// the scheduler has enough pieces to balance two or more threads.
+constexpr std::size_t kBatchSize = 2048;
+
+void tally(const reference::Evaluation& e, Partial& partial) {
+  Counters& c = partial.counters;
+  c.culled += e.culled;  // the reference filter agrees with the lanes: 0 here
+  c.solved += !e.culled && e.result.status == Status::ok;
+  c.hits += e.result.hit;
+  c.undecided += e.undecided;
+  c.invalid += e.result.status != Status::ok;
+  if (e.result.hit) partial.earliest_toi = std::min(partial.earliest_toi, e.result.toi);
+}
+
+// Evaluates candidates [0, count) of a source: the lane filter over batches,
+// then the scalar path for each survivor, writing results[offset + i] when
+// per-candidate results are asked for. Results land at fixed places and the
+// reductions (sums, minimum) do not depend on order, so the outcome is the
+// same for any thread count.
+template <class Source>
+void run_source(const Source& source, std::size_t count, simd::FilterFunction<Source> filter,
+                const Options& options, std::size_t offset, BatchResult& batch) {
+  const bool filtered = options.mode != Mode::cubic;  // the baseline runs unfiltered
+  const bool certified = options.mode != Mode::fast;
   tbb::combinable<Partial> partials;
+  tbb::enumerable_thread_specific<std::vector<std::uint32_t>> survivor_buffers;
   auto work = [&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 256),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        Partial& partial = partials.local();
-                        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                          const reference::Evaluation e =
-                              reference::evaluate_query(kind, query_at(i), options);
-                          Counters& c = partial.counters;
-                          ++c.candidates;
-                          c.culled += e.culled;
-                          c.solved += !e.culled && e.result.status == Status::ok;
-                          c.hits += e.result.hit;
-                          c.undecided += e.undecided;
-                          c.invalid += e.result.status != Status::ok;
-                          if (e.result.hit)
-                            partial.earliest_toi = std::min(partial.earliest_toi, e.result.toi);
-                          if (options.per_candidate_results) batch.results[offset + i] = e.result;
-                        }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, count, kBatchSize),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+          std::vector<std::uint32_t>& survivors = survivor_buffers.local();
+          if (survivors.size() < range.size()) survivors.resize(std::max(range.size(), kBatchSize));
+          std::size_t kept = range.size();
+          if (filtered) {
+            kept = filter(source, range.begin(), range.end(), certified, survivors.data());
+          } else {
+            std::iota(survivors.begin(), survivors.begin() + static_cast<std::ptrdiff_t>(kept), 0u);
+          }
+          Partial& partial = partials.local();
+          partial.counters.candidates += static_cast<std::int64_t>(range.size());
+          partial.counters.culled += static_cast<std::int64_t>(range.size() - kept);
+          for (std::size_t j = 0; j < kept; ++j) {
+            const std::size_t i = range.begin() + survivors[j];
+            const reference::Evaluation e =
+                reference::evaluate_query(source.kind, simd::query_at(source, i), options);
+            tally(e, partial);
+            if (options.per_candidate_results) batch.results[offset + i] = e.result;
+          }
+        },
+        tbb::simple_partitioner());
   };
   if (options.threads > 0) {
     tbb::task_arena arena(options.threads);
@@ -58,51 +89,33 @@ void run_queries(Kind kind, std::size_t count, const QueryAt& query_at, const Op
   });
 }
 
-Query gather(const MeshView& mesh, const std::array<int, 4>& vertices) {
-  Query query;
-  for (int k = 0; k < 4; ++k) {
-    query.points[k] = mesh.positions_t0.row(vertices[k]).transpose();
-    query.points[k + 4] = mesh.positions_t1.row(vertices[k]).transpose();
-  }
-  return query;
-}
-
 }  // namespace
 
-Isa resolve_isa(Isa requested) {
-  // Only the scalar reference path exists so far; the lane kernels come with
-  // the SIMD issue.
-  if (requested == Isa::automatic || requested == Isa::scalar) return Isa::scalar;
-  throw std::invalid_argument(std::string("instruction set ") + to_string(requested) +
-                              " is not available in this build (available: scalar)");
-}
+Isa resolve_isa(Isa requested) { return simd::filter_kernels(requested).isa; }
 
 BatchResult batch_ccd(Kind kind, std::span<const Query> queries, const Options& options) {
-  resolve_isa(options.isa);
+  const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
   BatchResult batch;
   if (options.per_candidate_results) batch.results.resize(queries.size());
-  run_queries(kind, queries.size(), [&](std::size_t i) -> const Query& { return queries[i]; },
-              options, 0, batch);
+  if (!queries.empty())
+    run_source(simd::RawQueries{kind, queries.data()}, queries.size(), kernels.raw, options, 0, batch);
   return batch;
 }
 
 BatchResult mesh_ccd(const MeshView& mesh, const Candidates& candidates, const Options& options) {
-  resolve_isa(options.isa);
+  const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
   check_mesh(mesh, candidates);
   const std::size_t vertex_face = options.vertex_face ? candidates.vertex_face.size() : 0;
   const std::size_t edge_edge = options.edge_edge ? candidates.edge_edge.size() : 0;
   BatchResult batch;
   if (options.per_candidate_results) batch.results.resize(vertex_face + edge_edge);
-  run_queries(
-      Kind::vertex_face, vertex_face,
-      [&](std::size_t i) {
-        const auto [vertex, face] = candidates.vertex_face[i];
-        return gather(mesh, {vertex, mesh.faces(face, 0), mesh.faces(face, 1), mesh.faces(face, 2)});
-      },
-      options, 0, batch);
-  run_queries(
-      Kind::edge_edge, edge_edge, [&](std::size_t i) { return gather(mesh, candidates.edge_edge[i]); },
-      options, vertex_face, batch);
+  const simd::MeshPositions positions{mesh.positions_t0.data(), mesh.positions_t1.data(),
+                                      mesh.positions_t0.rows()};
+  run_source(simd::MeshVertexFace{positions, mesh.faces.data(), mesh.faces.rows(),
+                                  candidates.vertex_face.data()},
+             vertex_face, kernels.vertex_face, options, 0, batch);
+  run_source(simd::MeshEdgeEdge{positions, candidates.edge_edge.data()}, edge_edge,
+             kernels.edge_edge, options, vertex_face, batch);
   return batch;
 }
 

@@ -384,7 +384,7 @@ TEST_F(CliTest, JsonHasEveryFieldAndCountsAgainstTruth) {
   EXPECT_EQ(object.at("input"), "vertex-face/q.csv");
   EXPECT_EQ(object.at("kind"), "vf");
   EXPECT_EQ(object.at("mode"), "conservative");
-  EXPECT_EQ(object.at("isa"), "scalar");
+  EXPECT_EQ(object.at("isa"), batchccd::to_string(batchccd::resolve_isa(batchccd::Isa::automatic)));
   EXPECT_EQ(object.at("threads"), "3");
   EXPECT_EQ(object.at("queries"), "2");
   EXPECT_EQ(object.at("hits"), "1");

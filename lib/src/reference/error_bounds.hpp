@@ -23,7 +23,7 @@ struct ErrorModel {
 // three = 10 u, bounded by 16 u. Every term is a product of three factors
 // below 2 in magnitude, 6 terms a triple product, 3 products a sum: a factor
 // floor e perturbs a coefficient by at most 216 e.
-inline ErrorModel coefficient_error(double factor_floor) {
+[[gnu::always_inline]] inline ErrorModel coefficient_error(double factor_floor) {
   return {16 * kUnitRoundoff, 256 * factor_floor + kUnderflowFloor};
 }
 
@@ -36,7 +36,7 @@ inline ErrorModel interpolated_coefficient_error(double factor_floor) {
 
 // Halves after split_at_half: the coefficients' own error (16 u) plus three
 // roundings in the combination; the weights of a combination add up to 8.
-inline ErrorModel half_coefficient_error(const ErrorModel& whole) {
+[[gnu::always_inline]] inline ErrorModel half_coefficient_error(const ErrorModel& whole) {
   return {24 * kUnitRoundoff, 8 * whole.floor};
 }
 

@@ -29,7 +29,9 @@ struct ScaledQuery {
 ScaledQuery scale_query(Kind kind, const Query& query);
 
 // Index of DESIGN.md's x_k (k = 1..4) among Query::points at t0 (add 4 for t1).
-constexpr int point_index(Kind kind, int k) {
+// Always inlined: the lane kernels, compiled with other instruction sets,
+// call it too, and an out-of-line copy from them must never be shared.
+[[gnu::always_inline]] constexpr int point_index(Kind kind, int k) {
   // VF files list the vertex first: p, a, b, c; DESIGN.md numbers a, b, c, p.
   return kind == Kind::edge_edge ? k - 1 : (k == 4 ? 0 : k);
 }

@@ -1,0 +1,62 @@
+#include <stdexcept>
+#include <string>
+
+#include <xsimd/xsimd.hpp>
+
+#include "reference/filter.hpp"
+#include "reference/scaled_query.hpp"
+#include "simd/filter.hpp"
+
+namespace batchccd::simd {
+namespace {
+
+// The scalar reference filter behind the same interface: Isa::scalar.
+template <class Source>
+std::size_t filter_range_scalar(const Source& source, std::size_t begin, std::size_t end,
+                                bool certified, std::uint32_t* survivors) {
+  std::size_t kept = 0;
+  for (std::size_t i = begin; i < end; ++i) {
+    const reference::ScaledQuery scaled = reference::scale_query(source.kind, query_at(source, i));
+    if (!scaled.finite || scaled.coincident || !reference::sign_filter_culls(scaled, certified))
+      survivors[kept++] = static_cast<std::uint32_t>(i - begin);
+  }
+  return kept;
+}
+
+bool processor_has(Isa isa) {
+  const auto available = xsimd::available_architectures();
+  switch (isa) {
+    case Isa::scalar: return true;
+    case Isa::sse4: return available.sse4_2;
+    case Isa::avx2: return available.avx2 && available.fma3_avx2;
+    case Isa::avx512:
+      return available.avx512f && available.avx512dq && available.avx512bw && available.avx512cd;
+    case Isa::automatic: return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+const FilterKernels kScalarKernels = {Isa::scalar, &filter_range_scalar<RawQueries>,
+                                      &filter_range_scalar<MeshVertexFace>,
+                                      &filter_range_scalar<MeshEdgeEdge>};
+
+const FilterKernels& filter_kernels(Isa isa) {
+  if (isa == Isa::automatic) {
+    for (const FilterKernels* best : {&kAvx512Kernels, &kAvx2Kernels, &kSse4Kernels})
+      if (processor_has(best->isa)) return *best;
+    return kScalarKernels;
+  }
+  if (!processor_has(isa))
+    throw std::invalid_argument(std::string("instruction set ") + to_string(isa) +
+                                " is not supported by this processor");
+  switch (isa) {
+    case Isa::sse4: return kSse4Kernels;
+    case Isa::avx2: return kAvx2Kernels;
+    case Isa::avx512: return kAvx512Kernels;
+    default: return kScalarKernels;
+  }
+}
+
+}  // namespace batchccd::simd

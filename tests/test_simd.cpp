@@ -1,0 +1,190 @@
+// The lane kernels against the scalar reference filter, survivor for
+// survivor, on every instruction set this processor runs: random,
+// adversarial and real queries, raw and from meshes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "batchccd/batchccd.hpp"
+#include "simd/filter.hpp"
+
+namespace batchccd {
+namespace {
+
+std::vector<const simd::FilterKernels*> vector_kernels() {
+  std::vector<const simd::FilterKernels*> kernels;
+  for (Isa isa : {Isa::sse4, Isa::avx2, Isa::avx512}) {
+    try {
+      kernels.push_back(&simd::filter_kernels(isa));
+    } catch (const std::invalid_argument&) {
+      // not on this processor
+    }
+  }
+  return kernels;
+}
+
+template <class Source>
+std::vector<std::uint32_t> survivors(simd::FilterFunction<Source> filter, const Source& source,
+                                     std::size_t begin, std::size_t end, bool certified) {
+  std::vector<std::uint32_t> kept(end - begin);
+  kept.resize(filter(source, begin, end, certified, kept.data()));
+  return kept;
+}
+
+// Queries that stress every step of the lane arithmetic.
+class QueryGenerator {
+ public:
+  explicit QueryGenerator(std::uint64_t seed) : random_(seed) {}
+
+  Query next() {
+    Query q = base_query();
+    switch (pick(8)) {
+      case 0: break;                                   // plain random
+      case 1: flatten(q, std::ldexp(1.0, -pick(60))); break;  // near coplanar
+      case 2: collapse(q); break;                      // coincident points, zero-length edges
+      case 3: scale(q, pick(2090) - 1070); break;      // any exponent, subnormals included
+      case 4: mix_magnitudes(q); break;                // 1e300 beside 1e-300
+      case 5: round_to_grid(q); break;                 // exact zeros in the coefficients
+      case 6: poison(q); break;                        // NaN and infinities
+      case 7: stiff(q); break;                         // tiny motion at a large offset
+    }
+    return q;
+  }
+
+ private:
+  int pick(int n) { return std::uniform_int_distribution<int>(0, n - 1)(random_); }
+  double coordinate() { return std::uniform_real_distribution<double>(-1, 1)(random_); }
+  Vec3 point() { return {coordinate(), coordinate(), coordinate()}; }
+
+  Query base_query() {
+    Query q;
+    for (Vec3& p : q.points) p = point();
+    return q;
+  }
+  void flatten(Query& q, double height) {
+    for (Vec3& p : q.points) p.z() *= height;
+  }
+  void collapse(Query& q) {
+    const int times = 1 + pick(4);
+    for (int n = 0; n < times; ++n) q.points[pick(8)] = q.points[pick(8)];
+  }
+  void scale(Query& q, int exponent) {
+    for (Vec3& p : q.points)
+      for (int c = 0; c < 3; ++c) p[c] = std::ldexp(p[c], exponent);
+  }
+  void mix_magnitudes(Query& q) {
+    for (Vec3& p : q.points)
+      for (int c = 0; c < 3; ++c) p[c] = std::ldexp(p[c], pick(2) ? 1000 : -1000);
+  }
+  void round_to_grid(Query& q) {
+    for (Vec3& p : q.points)
+      for (int c = 0; c < 3; ++c) p[c] = std::round(p[c] * 4);
+  }
+  void poison(Query& q) {
+    const double values[] = {std::numeric_limits<double>::quiet_NaN(),
+                             std::numeric_limits<double>::infinity(),
+                             -std::numeric_limits<double>::infinity()};
+    q.points[pick(8)][pick(3)] = values[pick(3)];
+  }
+  void stiff(Query& q) {
+    const Vec3 offset = 1e8 * point();
+    for (int k = 0; k < 4; ++k) {
+      q.points[k] += offset;
+      q.points[k + 4] = q.points[k] + 1e-3 * point();
+    }
+  }
+
+  std::mt19937_64 random_;
+};
+
+TEST(SimdKernels, MatchTheReferenceFilterOnAdversarialQueries) {
+  const auto kernels = vector_kernels();
+  if (kernels.empty()) GTEST_SKIP() << "no vector instruction set on this processor";
+  QueryGenerator generator(20261121);
+  std::vector<Query> queries(1 << 19);
+  for (Query& q : queries) q = generator.next();
+  for (Kind kind : {Kind::vertex_face, Kind::edge_edge}) {
+    const simd::RawQueries source{kind, queries.data()};
+    for (bool certified : {true, false}) {
+      // Odd range ends exercise the partial last lane group.
+      const std::size_t begin = 3, end = queries.size() - 5;
+      const auto expected = survivors(simd::kScalarKernels.raw, source, begin, end, certified);
+      EXPECT_LT(expected.size(), end - begin);  // something is culled
+      for (const simd::FilterKernels* k : kernels)
+        EXPECT_EQ(survivors(k->raw, source, begin, end, certified), expected)
+            << to_string(k->isa) << " " << to_string(kind) << (certified ? " certified" : " plain");
+    }
+  }
+}
+
+TEST(SimdKernels, MatchTheReferenceFilterOnMeshIndexLists) {
+  const auto kernels = vector_kernels();
+  if (kernels.empty()) GTEST_SKIP() << "no vector instruction set on this processor";
+  std::mt19937_64 random(5);
+  std::uniform_real_distribution<double> coordinate(-1, 1);
+  const int vertices = 200, faces = 300, pairs = 20000;
+  Eigen::MatrixXd t0(vertices, 3), t1(vertices, 3);
+  for (int i = 0; i < vertices; ++i)
+    for (int c = 0; c < 3; ++c) {
+      t0(i, c) = coordinate(random);
+      t1(i, c) = t0(i, c) + 0.1 * coordinate(random);
+    }
+  Eigen::MatrixXi face_matrix(faces, 3);
+  std::uniform_int_distribution<int> vertex(0, vertices - 1), face(0, faces - 1);
+  for (int f = 0; f < faces; ++f)
+    for (int c = 0; c < 3; ++c) face_matrix(f, c) = vertex(random);
+  std::vector<std::array<int, 2>> vf(pairs);
+  std::vector<std::array<int, 4>> ee(pairs);
+  for (auto& p : vf) p = {vertex(random), face(random)};
+  for (auto& e : ee) e = {vertex(random), vertex(random), vertex(random), vertex(random)};
+  const simd::MeshPositions positions{t0.data(), t1.data(), vertices};
+  const simd::MeshVertexFace vf_source{positions, face_matrix.data(), faces, vf.data()};
+  const simd::MeshEdgeEdge ee_source{positions, ee.data()};
+  for (bool certified : {true, false}) {
+    const auto vf_expected = survivors(simd::kScalarKernels.vertex_face, vf_source, 1, pairs, certified);
+    const auto ee_expected = survivors(simd::kScalarKernels.edge_edge, ee_source, 1, pairs, certified);
+    for (const simd::FilterKernels* k : kernels) {
+      EXPECT_EQ(survivors(k->vertex_face, vf_source, 1, pairs, certified), vf_expected) << to_string(k->isa);
+      EXPECT_EQ(survivors(k->edge_edge, ee_source, 1, pairs, certified), ee_expected) << to_string(k->isa);
+    }
+  }
+}
+
+// Every instruction set gives the same final answers as the scalar path.
+TEST(SimdKernels, FinalDecisionsAreIdenticalOnSharedData) {
+  const std::filesystem::path data = BATCHCCD_SHARED_DATA;
+  if (!std::filesystem::is_directory(data)) GTEST_SKIP() << data << " is absent";
+  auto same = [](const BatchResult& a, const BatchResult& b, const std::string& what) {
+    ASSERT_EQ(a.results.size(), b.results.size()) << what;
+    for (std::size_t i = 0; i < a.results.size(); ++i) {
+      EXPECT_EQ(a.results[i].hit, b.results[i].hit) << what << " query " << i;
+      EXPECT_EQ(a.results[i].toi, b.results[i].toi) << what << " query " << i;
+    }
+    EXPECT_EQ(a.counters.culled, b.counters.culled) << what;
+  };
+  for (const simd::FilterKernels* k : vector_kernels()) {
+    Options scalar, vector;
+    scalar.isa = Isa::scalar;
+    vector.isa = k->isa;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(data / "sample-queries")) {
+      if (entry.path().extension() != ".csv") continue;
+      const QueryFile file = read_query_csv(entry.path(), *kind_from_path(entry.path()));
+      same(batch_ccd(file.kind, file.queries, scalar), batch_ccd(file.kind, file.queries, vector),
+           entry.path().string() + " " + to_string(k->isa));
+    }
+    for (const auto& entry : std::filesystem::directory_iterator(data / "scenes")) {
+      if (!is_scene_directory(entry.path())) continue;
+      const Scene scene = read_scene(entry.path());
+      const MeshView mesh{scene.positions_t0, scene.positions_t1, scene.faces};
+      same(mesh_ccd(mesh, scene.candidates, scalar), mesh_ccd(mesh, scene.candidates, vector),
+           entry.path().string() + " " + to_string(k->isa));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace batchccd
