@@ -105,21 +105,43 @@ class InclusionSolver {
         const std::int64_t budget = time.width() > kWideInterval ? kWideBudget : settings_.max_iterations;
         const Search search = search_parameters(ends, budget);
         if (search == Search::excluded) continue;
-        if (search == Search::out_of_iterations) return {true, time.low, true};
-        if (search == Search::found && settled) return {true, time.low, false};
+        if (search == Search::out_of_iterations) return {true, time.low, true, false};
+        if (search == Search::found && settled) return {true, time.low, false, false};
       } else if (settled) {
-        return {true, time.low, false};
+        return certain_contact(time);
       }
-      if (time.width() <= kSmallestWidth) return {true, time.low, false};  // nothing left to refine
+      if (time.width() <= kSmallestWidth) return {true, time.low, false, false};  // nothing left to refine
       for (const Interval half : {Interval{time.low, time.middle()}, Interval{time.middle(), time.high}}) {
         heap.push_back(half);
         std::push_heap(heap.begin(), heap.end(), starts_later);
       }
     }
-    return {};
+    return {false, 0, false, settings_.certified};  // every time excluded
   }
 
  private:
+  // The first contact lies in `time` at the cubic's first root there (a
+  // certain root, a certain inside test over all of it, every earlier time
+  // excluded). Refines it by halving on the cubic's signs alone: a root-free
+  // left half sends it right, a certain sign change left, until the width
+  // asked or a sign too close to call.
+  SolverOutcome certain_contact(Interval time) const {
+    const bool refine =
+        settings_.certified && settings_.need_toi && settings_.refined_toi_width > 0;
+    while (refine && time.width() > settings_.refined_toi_width) {
+      const Interval left{time.low, time.middle()};
+      const CubicSigns cubic = cubic_signs(endpoints(left));
+      if (cubic.root_free) {
+        time.low = left.high;
+      } else if (cubic.certain_root) {
+        time = left;
+      } else {
+        break;
+      }
+    }
+    return {true, time.low, false, settings_.certified, time.high};
+  }
+
   struct Image {
     bool excluded = false;
     double width = 0;  // widest component range, error included

@@ -12,12 +12,26 @@ struct SolverSettings {
   double tolerance = 1e-9;     // distance, in the scaled frame (query size ~1)
   double toi_tolerance = 1e-7;
   std::int64_t max_iterations = 1 << 20;
+  // Certified hits with need_toi: once a certain root with a certain inside
+  // test is found, locate the first contact on the cubic alone down to this
+  // width (0: stop at toi_tolerance). Exact mode asks for 2^-40.
+  double refined_toi_width = 0;
 };
 
 struct SolverOutcome {
   bool hit = false;
   double toi = 0;          // when hit: a lower bound of the first contact
   bool undecided = false;  // ran out of iterations (reported as a hit)
+  // Certified mode only: the decision is proven, not just bounded. A miss is
+  // certain (every box was excluded with error bounds); a hit is certain when
+  // a certain root of the cubic with a certain inside test settled it. A hit
+  // within `tolerance`, at the smallest time width or out of iterations is
+  // not certain: exact mode settles those exactly.
+  bool certain = false;
+  // A certain hit's first contact is the cubic's first root in [toi,
+  // toi_upper], a dyadic interval; refined_toi_width wide unless the cubic's
+  // signs became too close to call first.
+  double toi_upper = 1;
 };
 
 // Decides whether the primitives meet for some t in [0, 1] by bisecting boxes

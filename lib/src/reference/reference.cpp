@@ -1,13 +1,44 @@
 #include "reference/reference.hpp"
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "exact/exact_solver.hpp"
+#include "exact/first_root.hpp"
 #include "reference/cubic_solver.hpp"
 #include "reference/filter.hpp"
 #include "reference/inclusion_solver.hpp"
 #include "reference/scaled_query.hpp"
 
 namespace batchccd::reference {
+namespace {
 
-Evaluation evaluate_query(Kind kind, const Query& query, const Options& options) {
+const double kExactToiWidth = std::ldexp(1.0, -static_cast<int>(exact::kToiBits));
+
+SolverSettings solver_settings(const Options& options) {
+  SolverSettings settings;
+  settings.certified = options.mode != Mode::fast;
+  settings.need_toi = options.need_toi;
+  settings.tolerance = options.tolerance;
+  settings.toi_tolerance = options.toi_tolerance;
+  settings.max_iterations = options.max_iterations;
+  if (options.mode == Mode::exact) {
+    // The exact stage settles whatever stays open: no need for a long search.
+    settings.max_iterations = std::min(options.max_iterations, options.exact_mode_iterations);
+    settings.refined_toi_width = kExactToiWidth;
+  }
+  return settings;
+}
+
+void settle_exactly(Kind kind, const Query& query, const Options& options, Evaluation& evaluation) {
+  const exact::ExactOutcome outcome = exact::solve_exactly(kind, query, options.need_toi);
+  evaluation.exact_stage = ExactStage::decision;
+  evaluation.undecided = outcome.bound_reached;
+  evaluation.result = outcome.hit ? QueryResult{true, outcome.toi, Status::ok} : QueryResult{};
+}
+
+Evaluation evaluate(Kind kind, const Query& query, const Options& options) {
   Evaluation evaluation;
   const ScaledQuery scaled = scale_query(kind, query);
   if (!scaled.finite) {
@@ -18,25 +49,58 @@ Evaluation evaluate_query(Kind kind, const Query& query, const Options& options)
     evaluation.result = solve_cubic(kind, query);
     return evaluation;
   }
+  const bool exact = options.mode == Mode::exact;
   if (scaled.coincident) {  // all four points are one point throughout
-    evaluation.result = {true, 0.0, Status::ok};
+    // Scaling may have flushed tiny differences to zero: only exact
+    // arithmetic can tell those from a true coincidence.
+    if (exact) {
+      settle_exactly(kind, query, options, evaluation);
+    } else {
+      evaluation.result = {true, 0.0, Status::ok};
+    }
     return evaluation;
   }
-  const bool certified = options.mode == Mode::conservative;
-  if (sign_filter_culls(scaled, certified)) {
+  if (run_filters(kind, scaled, {options.mode != Mode::fast, options.sign_filter, options.separation_filter}).culled()) {
     evaluation.culled = true;
     return evaluation;
   }
-  SolverSettings settings;
-  settings.certified = certified;
-  settings.need_toi = options.need_toi;
-  settings.tolerance = options.tolerance;
-  settings.toi_tolerance = options.toi_tolerance;
-  settings.max_iterations = options.max_iterations;
-  const SolverOutcome outcome = solve_inclusion(kind, scaled, settings);
+  const SolverOutcome outcome = solve_inclusion(kind, scaled, solver_settings(options));
+  if (exact && !outcome.certain) {
+    // Out of iterations or a contact only within tolerance: exact arithmetic
+    // settles it (DESIGN.md §3).
+    settle_exactly(kind, query, options, evaluation);
+    return evaluation;
+  }
   evaluation.undecided = outcome.undecided;
   if (outcome.hit) evaluation.result = {true, outcome.toi, Status::ok};
+  if (exact && outcome.hit && options.need_toi && outcome.toi_upper - outcome.toi > kExactToiWidth) {
+    // A certain contact whose cubic's signs got too close to call before
+    // 2^-40 (slow relative motion, or a root exactly at a halving point):
+    // its root located exactly.
+    evaluation.exact_stage = ExactStage::toi;
+    if (const auto toi = exact::first_root_lower_bound(kind, query, outcome.toi, outcome.toi_upper)) {
+      evaluation.result.toi = *toi;
+    } else {
+      settle_exactly(kind, query, options, evaluation);
+    }
+  }
   return evaluation;
+}
+
+}  // namespace
+
+Evaluation evaluate_query(Kind kind, const Query& query, const Options& options) {
+  if (!options.time_queries) return evaluate(kind, query, options);
+  const auto start = std::chrono::steady_clock::now();
+  Evaluation evaluation = evaluate(kind, query, options);
+  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+  evaluation.seconds = elapsed.count();
+  return evaluation;
+}
+
+void count_exact_stage_and_time(const Evaluation& evaluation, Counters& counters) {
+  counters.exact_escalations += evaluation.exact_stage != ExactStage::none;
+  counters.max_query_seconds = std::max(counters.max_query_seconds, evaluation.seconds);
 }
 
 }  // namespace batchccd::reference

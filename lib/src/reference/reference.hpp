@@ -1,20 +1,35 @@
 #pragma once
 
+#include "batchccd/batch.hpp"
 #include "batchccd/options.hpp"
 #include "batchccd/query.hpp"
 
 namespace batchccd::reference {
 
+// Exact mode: what exact arithmetic settled of a query, if anything.
+enum class ExactStage {
+  none,      // the certified path settled all of it
+  toi,       // a certain contact whose first root it located to 2^-40
+  decision,  // the decision (and TOI): the certified path was not certain
+};
+
 // What the scalar reference path did with one query: the answer and which
 // stage settled it (for the batch counters).
 struct Evaluation {
   QueryResult result;
-  bool culled = false;     // the sign filter removed it
-  bool undecided = false;  // the solver ran out of iterations
+  bool culled = false;          // the sign filter removed it
+  bool undecided = false;       // the solver ran out of iterations
+  ExactStage exact_stage = ExactStage::none;
+  double seconds = 0;           // the evaluation's time, when Options::time_queries
 };
 
 // The whole scalar reference path for one query (DESIGN.md §2-3): scale,
-// filter, solve. The SIMD path must agree with it decision for decision.
+// filter, solve, and in exact mode settle what stays uncertain exactly. The
+// SIMD path must agree with it decision for decision.
 Evaluation evaluate_query(Kind kind, const Query& query, const Options& options);
+
+// Adds what the batch counters take from an evaluation beyond hits, culls
+// and the like: exact escalations and the slowest query's time.
+void count_exact_stage_and_time(const Evaluation& evaluation, Counters& counters);
 
 }  // namespace batchccd::reference

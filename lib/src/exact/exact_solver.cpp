@@ -1,0 +1,86 @@
+#include "exact/exact_solver.hpp"
+
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "exact/exact_motion.hpp"
+#include "exact/origin_in_triangle.hpp"
+#include "exact/root_isolation.hpp"
+
+namespace batchccd::exact {
+namespace {
+
+IsolatedRoot exact_time(long value) { return {Integer(value), 0, true, 0}; }
+
+// One square-free polynomial with every critical polynomial's roots.
+Polynomial critical_union(const std::vector<TriangleConditions>& triangles) {
+  Polynomial all;
+  all.coefficients.push_back(Integer(1));
+  for (const TriangleConditions& triangle : triangles)
+    for (const Polynomial& p : critical_polynomials(triangle))
+      all = square_free_union(all, square_free_part(p));
+  return all;
+}
+
+// Signs of the conditions' polynomials at roots of the critical polynomial.
+// Each polynomial's gcd with it (what decides a zero) is formed once.
+class SignsAtRoots {
+ public:
+  explicit SignsAtRoots(const Polynomial& critical) : critical_(critical) {}
+
+  std::optional<int> operator()(const Polynomial& p, IsolatedRoot& time) {
+    const CommonFactor common = [&]() -> const Polynomial& {
+      auto [entry, missing] = common_factors_.try_emplace(&p);
+      if (missing) {
+        // Where the critical polynomial divides p (the coplanarity cubic at
+        // its own roots), a division is cheaper than a gcd.
+        entry->second = divides(critical_, p) ? critical_ : greatest_common_divisor(p, critical_);
+      }
+      return entry->second;
+    };
+    return sign_at_root(p, common, time, critical_);
+  }
+
+ private:
+  const Polynomial& critical_;
+  std::map<const Polynomial*, Polynomial> common_factors_;  // polynomials outlive this
+};
+
+}  // namespace
+
+ExactOutcome solve_exactly(Kind kind, const Query& query, bool need_toi) {
+  std::vector<TriangleConditions> triangles;
+  for (const MovingTriangle& triangle : difference_triangles(kind, exact_relative_motion(kind, query)))
+    triangles.emplace_back(triangle);
+
+  const Polynomial critical = critical_union(triangles);
+  std::optional<std::vector<IsolatedRoot>> interior = isolate_roots(critical);
+  if (!interior) return {true, 0.0, true};
+  // Candidate times in increasing order: the first one in contact is the TOI.
+  std::vector<IsolatedRoot> candidates;
+  candidates.push_back(exact_time(0));
+  for (IsolatedRoot& root : *interior) candidates.push_back(std::move(root));
+  candidates.push_back(exact_time(1));
+
+  SignsAtRoots signs(critical);
+  for (IsolatedRoot& time : candidates) {
+    const SignAtTime sign = [&](const Polynomial& p) { return signs(p, time); };
+    bool contact = false;
+    for (const TriangleConditions& triangle : triangles) {
+      const std::optional<bool> inside = contains_origin(triangle, sign);
+      if (!inside) return {true, 0.0, true};
+      if (*inside) {
+        contact = true;
+        break;
+      }
+    }
+    if (!contact) continue;
+    // Refine the root to the asked width: each halving keeps it inside.
+    while (need_toi && !time.exact && time.exponent < kToiBits) halve(time, critical);
+    return {true, lower_bound(time), false};
+  }
+  return {};
+}
+
+}  // namespace batchccd::exact
