@@ -13,12 +13,16 @@ namespace {
 // The scalar reference filter behind the same interface: Isa::scalar.
 template <class Source>
 std::size_t filter_range_scalar(const Source& source, std::size_t begin, std::size_t end,
-                                bool certified, std::uint32_t* survivors) {
+                                const reference::FilterSettings& settings,
+                                std::uint32_t* survivors, FilterCounts& counts) {
   std::size_t kept = 0;
   for (std::size_t i = begin; i < end; ++i) {
     const reference::ScaledQuery scaled = reference::scale_query(source.kind, query_at(source, i));
-    if (!scaled.finite || scaled.coincident || !reference::sign_filter_culls(scaled, certified))
-      survivors[kept++] = static_cast<std::uint32_t>(i - begin);
+    reference::FilterVerdict verdict;
+    if (scaled.finite && !scaled.coincident) verdict = reference::run_filters(source.kind, scaled, settings);
+    counts.sign += verdict.sign;
+    counts.separation += verdict.separation;
+    if (!verdict.culled()) survivors[kept++] = static_cast<std::uint32_t>(i - begin);
   }
   return kept;
 }

@@ -4,19 +4,27 @@
 #include <cstdint>
 
 #include "batchccd/options.hpp"
+#include "reference/filter.hpp"
 #include "simd/sources.hpp"
 
-// The sign filter over a range of candidates, one implementation per
+// The lane filters over a range of candidates, one implementation per
 // instruction set behind one table (DESIGN.md §4: portable front,
 // per-instruction-set kernels, runtime dispatch).
 namespace batchccd::simd {
 
+// Candidates each filter culled (one both cull counts for both).
+struct FilterCounts {
+  std::size_t sign = 0;
+  std::size_t separation = 0;
+};
+
 // Writes, in increasing order, the indices i - begin of the candidates in
-// [begin, end) that the sign filter cannot cull; returns how many.
-// certified: cull only on certified signs (conservative); else plain signs.
+// [begin, end) that the filters cannot cull; returns how many, and adds
+// each filter's culls to `counts`.
 template <class Source>
 using FilterFunction = std::size_t (*)(const Source& source, std::size_t begin, std::size_t end,
-                                       bool certified, std::uint32_t* survivors);
+                                       const reference::FilterSettings& settings,
+                                       std::uint32_t* survivors, FilterCounts& counts);
 
 struct FilterKernels {
   Isa isa;

@@ -17,6 +17,8 @@
 
 #include "reference/bernstein.hpp"
 #include "reference/error_bounds.hpp"
+#include "reference/filter.hpp"
+#include "reference/separation_filter.hpp"
 #include "reference/scaled_query.hpp"
 #include "reference/sign_filter.hpp"
 #include "simd/filter.hpp"
@@ -121,13 +123,19 @@ std::size_t compress_indices(std::uint32_t keep, std::uint32_t base, std::uint32
   }
 }
 
-// Culls for `count` (<= lane count) queries whose 24 coordinates per lane
-// the source gathers: bit k of the result set when lane k is certainly (or,
-// uncertified, plainly) free of contact by the sign filter. Lanes past count
-// are never culled.
+// Which lanes each filter culls: bit k set when lane k is certainly (or,
+// uncertified, plainly) free of contact.
+struct LaneCulls {
+  std::uint32_t sign = 0;
+  std::uint32_t separation = 0;
+};
+
+// The filters for `count` (<= lane count) queries whose 24 coordinates per
+// lane the source gathers. Lanes past count are never culled.
 template <class Arch, class Source>
-std::uint32_t sign_filter_lanes(const Source& source, std::size_t first, std::size_t count,
-                                bool certified) {
+[[gnu::flatten]] LaneCulls filter_lanes(const Source& source, std::size_t first, std::size_t count,
+                       const reference::FilterSettings& settings) {
+  const bool certified = settings.certified;
   using L = Lanes<Arch>;
   using Double = typename L::Double;
   using Mask = typename L::Mask;
@@ -169,46 +177,63 @@ std::uint32_t sign_filter_lanes(const Source& source, std::size_t first, std::si
   for (auto& pair : relative)
     for (Vector& d : pair) d = {scale.apply(d.x), scale.apply(d.y), scale.apply(d.z)};
 
-  reference::BernsteinCubic<Double> cubic =
-      reference::bernstein_cubic(relative[0][0], relative[0][1], relative[1][0], relative[1][1],
-                                 relative[2][0], relative[2][1]);
-  Double relative_error(0.0), floor(0.0), half_relative_error(0.0), half_floor(0.0);
-  if (certified) {
-    auto absolute = [](const Vector& v) { return Vector{xsimd::abs(v.x), xsimd::abs(v.y), xsimd::abs(v.z)}; };
-    reference::bernstein_magnitudes(cubic, absolute(relative[0][0]), absolute(relative[0][1]),
-                                    absolute(relative[1][0]), absolute(relative[1][1]),
-                                    absolute(relative[2][0]), absolute(relative[2][1]));
-    // ScaledQuery::absolute_error: the input normalisation scaled down
-    // (largest >= 2) and the second scaled up: its underflow floor, magnified.
-    const Mask magnified = (largest >= Double(2.0)) & (largest_difference < Double(2.0));
-    const Double magnified_floor = scale.apply(Double(0x1p-1074));
-    const Double absolute_error =
-        xsimd::select(magnified, magnified_floor, Double(0.0)) + Double(0x1p-1074);
-    const reference::ErrorModel whole = reference::coefficient_error(0.0);
-    const reference::ErrorModel half = reference::half_coefficient_error(whole);
-    relative_error = Double(whole.relative);
-    floor = Double(256.0) * absolute_error + Double(reference::kUnderflowFloor);
-    half_relative_error = Double(half.relative);
-    half_floor = Double(8.0) * floor;
-  } else {
-    for (Double& m : cubic.magnitude) m = Double(0.0);
+  // ScaledQuery::absolute_error: when the input normalisation scaled down
+  // (largest >= 2) and the second scaled up, its underflow floor, magnified.
+  const Mask magnified = (largest >= Double(2.0)) & (largest_difference < Double(2.0));
+  const Double absolute_error =
+      xsimd::select(magnified, scale.apply(Double(0x1p-1074)), Double(0.0)) + Double(0x1p-1074);
+  const Mask evaluable = finite & distinct;
+  const std::uint32_t lanes_in_use = (1u << count) - 1;
+
+  LaneCulls culls;
+  if (settings.sign) {
+    reference::BernsteinCubic<Double> cubic =
+        reference::bernstein_cubic(relative[0][0], relative[0][1], relative[1][0],
+                                   relative[1][1], relative[2][0], relative[2][1]);
+    Double relative_error(0.0), floor(0.0), half_relative_error(0.0), half_floor(0.0);
+    if (certified) {
+      reference::bernstein_magnitudes(
+          cubic, reference::absolute(relative[0][0]), reference::absolute(relative[0][1]),
+          reference::absolute(relative[1][0]), reference::absolute(relative[1][1]),
+          reference::absolute(relative[2][0]), reference::absolute(relative[2][1]));
+      // reference::coefficient_error and half_coefficient_error, lane by lane.
+      const reference::ErrorModel whole = reference::coefficient_error(0.0);
+      const reference::ErrorModel half = reference::half_coefficient_error(whole);
+      relative_error = Double(whole.relative);
+      floor = Double(256.0) * absolute_error + Double(reference::kUnderflowFloor);
+      half_relative_error = Double(half.relative);
+      half_floor = Double(8.0) * floor;
+    } else {
+      for (Double& m : cubic.magnitude) m = Double(0.0);
+    }
+    const Mask culled = reference::sign_filter_culls(cubic, relative_error, floor,
+                                                     half_relative_error, half_floor);
+    culls.sign = lane_bits<Arch>(culled & evaluable) & lanes_in_use;
   }
-  const Mask culled = reference::sign_filter_culls(cubic, relative_error, floor,
-                                                   half_relative_error, half_floor) &
-                      finite & distinct;
-  return lane_bits<Arch>(culled) & ((1u << count) - 1);
+  if (settings.separation) {
+    // reference::separation_error, lane by lane.
+    const reference::SeparationErrorModel error = reference::separation_error(0.0, certified);
+    const Mask enabled = certified ? Mask(absolute_error <= Double(0x1p-900)) : Mask(true);
+    const Mask culled = reference::separation_filter_culls(source.kind, relative,
+                                                           Double(error.relative), Double(error.floor));
+    culls.separation = lane_bits<Arch>(culled & enabled & evaluable) & lanes_in_use;
+  }
+  return culls;
 }
 
 // The filter over candidates [begin, end): see FilterFunction.
 template <class Arch, class Source>
-std::size_t filter_range(const Source& source, std::size_t begin, std::size_t end, bool certified,
-                         std::uint32_t* survivors) {
+std::size_t filter_range(const Source& source, std::size_t begin, std::size_t end,
+                         const reference::FilterSettings& settings, std::uint32_t* survivors,
+                         FilterCounts& counts) {
   constexpr std::size_t lanes = Lanes<Arch>::size;
   std::size_t kept = 0;
   for (std::size_t first = begin; first < end; first += lanes) {
     const std::size_t count = end - first < lanes ? end - first : lanes;
-    const std::uint32_t culled = sign_filter_lanes<Arch>(source, first, count, certified);
-    const std::uint32_t keep = ~culled & ((1u << count) - 1);
+    const LaneCulls culls = filter_lanes<Arch>(source, first, count, settings);
+    counts.sign += static_cast<std::size_t>(__builtin_popcount(culls.sign));
+    counts.separation += static_cast<std::size_t>(__builtin_popcount(culls.separation));
+    const std::uint32_t keep = ~(culls.sign | culls.separation) & ((1u << count) - 1);
     kept += compress_indices<Arch>(keep, static_cast<std::uint32_t>(first - begin), survivors + kept);
   }
   return kept;

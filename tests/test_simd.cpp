@@ -27,12 +27,31 @@ std::vector<const simd::FilterKernels*> vector_kernels() {
   return kernels;
 }
 
+// Survivors, then how many each filter culled, as one comparable list.
 template <class Source>
 std::vector<std::uint32_t> survivors(simd::FilterFunction<Source> filter, const Source& source,
-                                     std::size_t begin, std::size_t end, bool certified) {
+                                     std::size_t begin, std::size_t end,
+                                     const reference::FilterSettings& settings) {
   std::vector<std::uint32_t> kept(end - begin);
-  kept.resize(filter(source, begin, end, certified, kept.data()));
+  simd::FilterCounts counts;
+  kept.resize(filter(source, begin, end, settings, kept.data(), counts));
+  kept.push_back(static_cast<std::uint32_t>(counts.sign));
+  kept.push_back(static_cast<std::uint32_t>(counts.separation));
   return kept;
+}
+
+// Certified and plain, each filter alone and both.
+std::vector<reference::FilterSettings> all_settings() {
+  std::vector<reference::FilterSettings> settings;
+  for (bool certified : {true, false})
+    for (auto [sign, separation] : {std::pair{true, false}, {false, true}, {true, true}})
+      settings.push_back({certified, sign, separation});
+  return settings;
+}
+
+std::string describe(const reference::FilterSettings& s) {
+  return std::string(s.certified ? "certified" : "plain") + (s.sign ? " sign" : "") +
+         (s.separation ? " separation" : "");
 }
 
 // Queries that stress every step of the lane arithmetic.
@@ -109,14 +128,14 @@ TEST(SimdKernels, MatchTheReferenceFilterOnAdversarialQueries) {
   for (Query& q : queries) q = generator.next();
   for (Kind kind : {Kind::vertex_face, Kind::edge_edge}) {
     const simd::RawQueries source{kind, queries.data()};
-    for (bool certified : {true, false}) {
+    for (const reference::FilterSettings& settings : all_settings()) {
       // Odd range ends exercise the partial last lane group.
       const std::size_t begin = 3, end = queries.size() - 5;
-      const auto expected = survivors(simd::kScalarKernels.raw, source, begin, end, certified);
+      const auto expected = survivors(simd::kScalarKernels.raw, source, begin, end, settings);
       EXPECT_LT(expected.size(), end - begin);  // something is culled
       for (const simd::FilterKernels* k : kernels)
-        EXPECT_EQ(survivors(k->raw, source, begin, end, certified), expected)
-            << to_string(k->isa) << " " << to_string(kind) << (certified ? " certified" : " plain");
+        EXPECT_EQ(survivors(k->raw, source, begin, end, settings), expected)
+            << to_string(k->isa) << " " << to_string(kind) << " " << describe(settings);
     }
   }
 }
@@ -144,12 +163,14 @@ TEST(SimdKernels, MatchTheReferenceFilterOnMeshIndexLists) {
   const simd::MeshPositions positions{t0.data(), t1.data(), vertices};
   const simd::MeshVertexFace vf_source{positions, face_matrix.data(), faces, vf.data()};
   const simd::MeshEdgeEdge ee_source{positions, ee.data()};
-  for (bool certified : {true, false}) {
-    const auto vf_expected = survivors(simd::kScalarKernels.vertex_face, vf_source, 1, pairs, certified);
-    const auto ee_expected = survivors(simd::kScalarKernels.edge_edge, ee_source, 1, pairs, certified);
+  for (const reference::FilterSettings& settings : all_settings()) {
+    const auto vf_expected = survivors(simd::kScalarKernels.vertex_face, vf_source, 1, pairs, settings);
+    const auto ee_expected = survivors(simd::kScalarKernels.edge_edge, ee_source, 1, pairs, settings);
     for (const simd::FilterKernels* k : kernels) {
-      EXPECT_EQ(survivors(k->vertex_face, vf_source, 1, pairs, certified), vf_expected) << to_string(k->isa);
-      EXPECT_EQ(survivors(k->edge_edge, ee_source, 1, pairs, certified), ee_expected) << to_string(k->isa);
+      EXPECT_EQ(survivors(k->vertex_face, vf_source, 1, pairs, settings), vf_expected)
+          << to_string(k->isa) << " " << describe(settings);
+      EXPECT_EQ(survivors(k->edge_edge, ee_source, 1, pairs, settings), ee_expected)
+          << to_string(k->isa) << " " << describe(settings);
     }
   }
 }
@@ -165,6 +186,8 @@ TEST(SimdKernels, FinalDecisionsAreIdenticalOnSharedData) {
       EXPECT_EQ(a.results[i].toi, b.results[i].toi) << what << " query " << i;
     }
     EXPECT_EQ(a.counters.culled, b.counters.culled) << what;
+    EXPECT_EQ(a.counters.culled_by_sign, b.counters.culled_by_sign) << what;
+    EXPECT_EQ(a.counters.culled_by_separation, b.counters.culled_by_separation) << what;
   };
   for (const simd::FilterKernels* k : vector_kernels()) {
     Options scalar, vector;

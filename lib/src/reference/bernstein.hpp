@@ -6,12 +6,30 @@
 // reference path, an xsimd batch in the lane kernels, so both make the same
 // decisions bit for bit.
 
+#include <cmath>
+
 namespace batchccd::reference {
 
 template <class T>
 struct Vector3 {
   T x, y, z;
 };
+
+template <class T>
+Vector3<T> operator-(const Vector3<T>& a, const Vector3<T>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+
+template <class T>
+Vector3<T> operator+(const Vector3<T>& a, const Vector3<T>& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+
+template <class T>
+Vector3<T> absolute(const Vector3<T>& v) {
+  using std::abs;
+  return {abs(v.x), abs(v.y), abs(v.z)};
+}
 
 template <class T>
 Vector3<T> cross(const Vector3<T>& a, const Vector3<T>& b) {

@@ -5,10 +5,6 @@ namespace {
 
 using BallVector = Vector3<Ball>;
 
-BallVector operator-(const BallVector& a, const BallVector& b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-
 // With x1 at the origin: a = 0, b = x2, c = x3, p = x4, n = b x c. At a time
 // where p lies in the triangle's plane, p is inside iff all three
 // e_k = (edge_k x (p - start_k)) . n are >= 0 (each is |n|^2 times a

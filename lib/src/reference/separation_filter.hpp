@@ -1,0 +1,198 @@
+#pragma once
+
+#include <cmath>
+
+#include "batchccd/query.hpp"
+#include "reference/bernstein.hpp"
+#include "reference/error_bounds.hpp"
+
+// The second lane filter (DESIGN.md §2, "separation against motion"): a
+// query cannot touch in [0, 1] when the distance between its primitives at
+// t = 0 exceeds the largest relative displacement of their vertices, because
+// any two points of them (fixed barycentric or edge parameters) move
+// relative to each other by at most that much. Both sides are certified:
+// a lower bound of the squared distance against an upper bound of the
+// squared displacement. Written once over T (double, or an xsimd batch in
+// the lane kernels), branch-free, in the frame of ScaledQuery (x1 at the
+// origin for all t).
+//
+// The distance bound: along the common normal n (triangle normal, or the
+// two edge directions' cross product), plus in the plane normal to n the
+// largest gap along a few in-plane axes (VF: the three edges' outward
+// normals; EE: both edges' in-plane normals and both directions). The two
+// parts are orthogonal, so their squares add.
+namespace batchccd::reference {
+
+// select for scalar lanes; xsimd's select serves batches (found by ADL).
+inline double select(bool condition, double if_true, double if_false) {
+  return condition ? if_true : if_false;
+}
+
+template <class T>
+struct Bounded {
+  T value;
+  T magnitude;  // the same expression over absolute values (error scale)
+};
+
+// Certified-lower-bound arithmetic for the separation test: every quantity
+// derived from the scaled positions has at most 21 roundings on any term's
+// path (counted in separation_filter_culls' comments), bounded by 64 u.
+struct SeparationErrors {
+  static constexpr double relative = 64 * kUnitRoundoff;
+  static constexpr double shrink = 1 - 8 * kUnitRoundoff;  // a squared ratio's rounding
+  static constexpr double grow = 1 + 8 * kUnitRoundoff;
+};
+
+// A lower bound of max(0, numerator)^2 / denominator (denominator >= 0 in
+// exact arithmetic), given their magnitudes; `floor` is the absolute error
+// floor of both. With `signed_gap` false |numerator| counts instead.
+template <class T>
+T squared_ratio_lower_bound(const Bounded<T>& numerator, const Bounded<T>& denominator, T relative,
+                            T floor, bool signed_gap) {
+  using std::abs;
+  const T excess = (signed_gap ? numerator.value : abs(numerator.value)) -
+                   (relative * numerator.magnitude + floor);
+  const T room = denominator.value + (relative * denominator.magnitude + floor);
+  return select((excess > T(0)) & (room > T(0)),
+                excess * excess / room * T(SeparationErrors::shrink), T(0));
+}
+
+// An upper bound of |w|^2 for a difference w of scaled positions whose
+// terms add up to `magnitude` (componentwise), with absolute floor `floor`.
+template <class T>
+T squared_norm_upper_bound(const Vector3<T>& w, const Vector3<T>& magnitude, T relative, T floor) {
+  using std::abs;
+  const T x = abs(w.x) + (relative * magnitude.x + floor);
+  const T y = abs(w.y) + (relative * magnitude.y + floor);
+  const T z = abs(w.z) + (relative * magnitude.z + floor);
+  return (x * x + y * y + z * z) * T(SeparationErrors::grow);
+}
+
+template <class T>
+T max_of(T a, T b) {
+  return select(a > b, a, b);
+}
+
+// Squared gap between the intervals spanned by two pairs of projections
+// onto an axis of squared length axis2: a lower bound (0 when they overlap).
+template <class T>
+T squared_gap_lower_bound(const Bounded<T> (&a)[2], const Bounded<T> (&b)[2],
+                          const Bounded<T>& axis2, T relative, T floor) {
+  const T a_low = select(a[0].value < a[1].value, a[0].value, a[1].value);
+  const T a_high = select(a[0].value < a[1].value, a[1].value, a[0].value);
+  const T b_low = select(b[0].value < b[1].value, b[0].value, b[1].value);
+  const T b_high = select(b[0].value < b[1].value, b[1].value, b[0].value);
+  const T magnitude =
+      max_of(max_of(a[0].magnitude, a[1].magnitude), max_of(b[0].magnitude, b[1].magnitude));
+  // Each end may be off by its error: the gap by twice the largest.
+  const Bounded<T> gap{max_of(b_low - a_high, a_low - b_high), T(2) * magnitude};
+  return squared_ratio_lower_bound(gap, axis2, relative, T(2) * floor, true);
+}
+
+template <class T>
+Bounded<T> bounded_dot(const Vector3<T>& a, const Vector3<T>& a_magnitude, const Vector3<T>& b,
+                       const Vector3<T>& b_magnitude) {
+  return {dot(a, b), dot(a_magnitude, b_magnitude)};
+}
+
+// Squared distance at t = 0, lower bound: vertex x4 against triangle (0, x2, x3).
+template <class T>
+T vertex_face_distance2(const Vector3<T>& b, const Vector3<T>& c, const Vector3<T>& p, T relative,
+                        T floor) {
+  const Vector3<T> bm = absolute(b), cm = absolute(c), pm = absolute(p);
+  const Vector3<T> zero{T(0), T(0), T(0)};
+  const Vector3<T> n = cross(b, c), nm = cross_magnitude(bm, cm);
+  const Bounded<T> n2 = bounded_dot(n, nm, n, nm);
+  const T plane = squared_ratio_lower_bound(bounded_dot(n, nm, p, pm), n2, relative, floor, false);
+  // Edge k from start to end; m = edge x n points away from the triangle.
+  const Vector3<T>* starts[3] = {&zero, &b, &c};
+  const Vector3<T>* ends[3] = {&b, &c, &zero};
+  T in_plane(0);
+  for (int k = 0; k < 3; ++k) {
+    const Vector3<T>& start = *starts[k];
+    const Vector3<T> start_magnitude = absolute(start);
+    const Vector3<T> edge = *ends[k] - start, edge_magnitude = absolute(*ends[k]) + start_magnitude;
+    const Vector3<T> m = cross(edge, n), mm = cross_magnitude(edge_magnitude, nm);
+    const Bounded<T> outside = bounded_dot(p - start, pm + start_magnitude, m, mm);
+    in_plane = max_of(in_plane, squared_ratio_lower_bound(outside, bounded_dot(m, mm, m, mm),
+                                                          relative, floor, true));
+  }
+  return plane + in_plane;
+}
+
+// Squared distance at t = 0, lower bound: edge (0, x2) against edge (x3, x4).
+template <class T>
+T edge_edge_distance2(const Vector3<T>& a1, const Vector3<T>& b0, const Vector3<T>& b1, T relative,
+                      T floor) {
+  const Vector3<T> a1m = absolute(a1), b0m = absolute(b0), b1m = absolute(b1);
+  const Vector3<T> db = b1 - b0, dbm = b1m + b0m;
+  const Vector3<T> n = cross(a1, db), nm = cross_magnitude(a1m, dbm);
+  const T planes = squared_ratio_lower_bound(bounded_dot(n, nm, b0, b0m), bounded_dot(n, nm, n, nm),
+                                             relative, floor, false);
+  const Vector3<T> axes[4] = {cross(a1, n), cross(db, n), a1, db};
+  const Vector3<T> axis_magnitudes[4] = {cross_magnitude(a1m, nm), cross_magnitude(dbm, nm), a1m, dbm};
+  T in_plane(0);
+  for (int k = 0; k < 4; ++k) {
+    const Vector3<T>& v = axes[k];
+    const Vector3<T>& vm = axis_magnitudes[k];
+    const Bounded<T> a[2] = {{T(0), T(0)}, bounded_dot(a1, a1m, v, vm)};  // edge a starts at the origin
+    const Bounded<T> b[2] = {bounded_dot(b0, b0m, v, vm), bounded_dot(b1, b1m, v, vm)};
+    in_plane = max_of(in_plane, squared_gap_lower_bound(a, b, bounded_dot(v, vm, v, vm), relative, floor));
+  }
+  return planes + in_plane;
+}
+
+// Squared largest relative displacement over the step, upper bound. moved[i]
+// is x_{i+2}(1) - x_{i+2}(0) (x1 does not move in this frame).
+template <class T>
+T largest_displacement2(Kind kind, const Vector3<T> (&moved)[3], const Vector3<T> (&moved_magnitude)[3],
+                        T relative, T floor) {
+  // VF: the vertex x4 against each triangle vertex (x1, x2, x3);
+  // EE: each end of edge a (x1, x2) against each end of edge b (x3, x4).
+  // (-1: x1, which does not move; VF lists its third pair twice to fill the table.)
+  const int pairs[2][4][2] = {{{2, -1}, {2, 0}, {2, 1}, {2, 1}},
+                              {{1, -1}, {2, -1}, {0, 1}, {0, 2}}};
+  T largest(0);
+  for (const auto& pair : pairs[kind == Kind::vertex_face ? 0 : 1]) {
+    Vector3<T> w = moved[pair[0]], magnitude = moved_magnitude[pair[0]];
+    if (pair[1] >= 0) {
+      w = w - moved[pair[1]];
+      magnitude = magnitude + moved_magnitude[pair[1]];
+    }
+    largest = max_of(largest, squared_norm_upper_bound(w, magnitude, relative, floor));
+  }
+  return largest;
+}
+
+template <class T>
+T distance2_at(Kind kind, const Vector3<T> (&relative)[3][2], int end, T error_relative, T floor) {
+  return kind == Kind::vertex_face
+             ? vertex_face_distance2(relative[0][end], relative[1][end], relative[2][end],
+                                     error_relative, floor)
+             : edge_edge_distance2(relative[0][end], relative[1][end], relative[2][end],
+                                   error_relative, floor);
+}
+
+// The filter: true (per lane) when the primitives certainly stay apart.
+// relative positions as in ScaledQuery::relative. With d0, d1 the distances
+// at t = 0 and t = 1 and m the largest displacement, a contact at t needs
+// d0 <= t m and d1 <= (1 - t) m, so d0 + d1 > m rules it out; squared,
+// d0^2 + d1^2 + 2 sqrt(d0^2 d1^2) > m^2.
+template <class T>
+auto separation_filter_culls(Kind kind, const Vector3<T> (&relative)[3][2], T error_relative,
+                             T floor) {
+  using std::sqrt;
+  Vector3<T> moved[3], moved_magnitude[3];
+  for (int i = 0; i < 3; ++i) {
+    moved[i] = relative[i][1] - relative[i][0];
+    moved_magnitude[i] = absolute(relative[i][1]) + absolute(relative[i][0]);
+  }
+  const T start2 = distance2_at(kind, relative, 0, error_relative, floor);
+  const T end2 = distance2_at(kind, relative, 1, error_relative, floor);
+  // Lower bounds throughout: each rounding (product, root, sums) costs at
+  // most u, and the shrink factor takes 8 u off.
+  const T sum2 = (start2 + end2 + T(2) * sqrt(start2 * end2)) * T(SeparationErrors::shrink);
+  return sum2 > largest_displacement2(kind, moved, moved_magnitude, error_relative, floor);
+}
+
+}  // namespace batchccd::reference
