@@ -13,13 +13,23 @@
 
 namespace batchccd {
 
+// What a batch call did, summed over the candidates it evaluated.
 struct Counters {
   std::int64_t candidates = 0;  // queries evaluated
   std::int64_t culled = 0;      // removed by the lane filters
+  std::int64_t culled_by_sign = 0;        // of those, by the sign filter
+  std::int64_t culled_by_separation = 0;  // by the separation filter (both may cull one)
   std::int64_t solved = 0;      // sent to the solver (candidates - culled)
   std::int64_t hits = 0;
   std::int64_t undecided = 0;   // solver ran out of iterations: reported as hits
   std::int64_t invalid = 0;     // Status::invalid_input
+  // Exact mode: queries whose decision (or TOI) the certified path left
+  // uncertain and exact arithmetic settled.
+  std::int64_t exact_escalations = 0;
+  // Wall-clock seconds of the slowest query the scalar path evaluated (the
+  // lane filters' culls take nanoseconds), when Options::time_queries is set;
+  // 0 otherwise. Adding counters keeps the larger.
+  double max_query_seconds = 0;
 
   Counters& operator+=(const Counters& other);
 };
@@ -28,7 +38,8 @@ struct BatchResult {
   // One per candidate, in input order (a mesh call: vertex-face candidates
   // first, then edge-edge). Empty when Options::per_candidate_results is false.
   std::vector<QueryResult> results;
-  // Earliest TOI over all candidates, +inf when nothing collides.
+  // Earliest TOI over all candidates, +inf when nothing collides (0 when a
+  // candidate has a NaN or infinite coordinate: see Status::invalid_input).
   double earliest_toi = std::numeric_limits<double>::infinity();
   Counters counters;
 };
@@ -38,11 +49,16 @@ struct BatchResult {
 // a forced one is not available.
 Isa resolve_isa(Isa requested);
 
-// Raw queries, all of one kind.
+// Raw queries, all of one kind, evaluated in parallel (Options::threads).
+// Per query, the promises of ccd.hpp. Throws std::invalid_argument when
+// options.isa is not available; a query with a NaN or infinite coordinate
+// only gets Status::invalid_input (hit, toi 0), the others are unaffected.
 BatchResult batch_ccd(Kind kind, std::span<const Query> queries,
                       const Options& options = {});
 
-// Vertex positions at t0 and t1 (n x 3), triangles (m x 3 vertex ids).
+// Vertex positions at t0 and t1 (n x 3, any length unit), triangles (m x 3
+// vertex ids). References: nothing is copied; the matrices must outlive the
+// view. With an edges matrix too: MeshWithEdgesView (mesh_edges.hpp).
 struct MeshView {
   const Eigen::MatrixXd& positions_t0;
   const Eigen::MatrixXd& positions_t1;
@@ -55,8 +71,18 @@ struct Candidates {
   std::vector<std::array<int, 4>> edge_edge;    // a0, a1, b0, b1 vertex ids
 };
 
-// Throws std::invalid_argument naming the first bad item when the matrices
-// are not n x 3 / m x 3 of matching sizes or an index is out of range.
+// Bad input (tests/test_bad_input.cpp). The whole call is refused, before
+// anything is evaluated, with std::invalid_argument naming the first bad
+// item, when positions_t0 and positions_t1 differ in row count, a matrix
+// with rows does not have 3 columns, or an index is out of range: a face's
+// vertex, or a candidate's vertex or face id (negative or too large), in
+// every candidate list, also one that Options switches off. An empty mesh
+// (0 rows; default-constructed 0 x 0 matrices too) is valid; with no
+// candidates, as with no queries in batch_ccd, the result is empty
+// (earliest_toi = +inf, counters 0). Per candidate (Status in query.hpp): a
+// NaN or infinite position makes exactly the candidates that read that vertex
+// invalid_input; faces with repeated vertices, a vertex of its own face and
+// edges sharing a vertex are evaluated as their geometry.
 BatchResult mesh_ccd(const MeshView& mesh, const Candidates& candidates,
                      const Options& options = {});
 

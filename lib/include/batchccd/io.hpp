@@ -13,18 +13,21 @@
 #include "batchccd/batch.hpp"
 #include "batchccd/query.hpp"
 
-// Readers for the data formats of DESIGN.md §5. Every reader validates what
+// Readers for the data formats of DESIGN.md §5 (query CSV files, PLY
+// meshes, candidate lists, scene directories). Every reader validates what
 // it reads and throws InputError naming the file, the line (0 when the
 // problem has no line, e.g. a missing file, or a binary PLY body, where the
 // message names the element entry instead) and the problem; none crashes on
-// malformed input.
+// malformed input. Coordinates are returned as read, in the file's units.
 namespace batchccd {
 
+// What every reader throws on a missing, unreadable or malformed file.
+// what() is "file:line: problem" ("file: problem" when line is 0).
 class InputError : public std::runtime_error {
  public:
   InputError(std::string file, long line, const std::string& problem);
   const std::string& file() const { return file_; }
-  long line() const { return line_; }
+  long line() const { return line_; }  // 1-based; 0 when not tied to a line
 
  private:
   std::string file_;
@@ -39,11 +42,12 @@ double exact_double_from_rational(std::string_view numerator,
 
 // The kind a path names, ignoring case: "vertex-face" or a "vf" word means
 // vertex_face, "edge-edge" or an "ee" word edge_edge (the last such component
-// wins).
+// wins). std::nullopt when no component names one. Never throws.
 std::optional<Kind> kind_from_path(const std::filesystem::path& path);
 
+// The queries of one query CSV file, in file order.
 struct QueryFile {
-  std::string path;
+  std::string path;  // as given to read_query_csv
   Kind kind = Kind::vertex_face;
   std::vector<Query> queries;
   std::optional<std::vector<bool>> truth;  // one per query, when the file has it
@@ -51,28 +55,44 @@ struct QueryFile {
 
 // Query CSV: 8 rows a query; 7 columns x_num,x_den,y_num,y_den,z_num,z_den,truth
 // (truth 0/1, equal on the query's 8 rows) or 6 columns without truth. Commas
-// with or without a space after them.
+// with or without a space after them. Rows in the point order of Query; the
+// file does not say its kind, so the caller does (kind_from_path helps).
+// Each coordinate must be exactly a double (exact_double_from_rational).
+// Throws InputError on any bad row: a wrong column count, a row count that
+// is not a multiple of 8, a value that is not exactly a double, a truth that
+// is not 0/1 or differs within a query, an empty line.
 QueryFile read_query_csv(const std::filesystem::path& path, Kind kind);
 
-// Ground truth: a JSON array of booleans (true/false, or 0/1), or one 0/1 a line.
+// Ground truth: a JSON array of booleans (true/false, or 0/1), or one 0/1 a
+// line. Throws InputError on anything else.
 std::vector<bool> read_truth(const std::filesystem::path& path);
 
+// A triangle mesh as read from a PLY file.
 struct PlyMesh {
   Eigen::MatrixXd vertices;  // n x 3
   Eigen::MatrixXi faces;     // m x 3 (triangles only)
 };
 
 // PLY in any standard encoding: ascii, binary_little_endian,
-// binary_big_endian; x/y/z of any numeric type among other vertex properties;
-// faces as a list property named vertex_indices or vertex_index.
+// binary_big_endian; x/y/z of any numeric type among other vertex properties
+// (converted to double; other properties are skipped); faces as a list
+// property named vertex_indices or vertex_index (a file without a face
+// element gives 0 x 3 faces). Throws InputError on a malformed header, a
+// truncated body, a face that is not a triangle or a vertex index out of
+// range.
 PlyMesh read_ply(const std::filesystem::path& path);
 
-// Candidate lists: "vertex,face" or "a0,a1,b0,b1" a line, no header.
+// Candidate lists: "vertex,face" or "a0,a1,b0,b1" a line, no header; ids
+// are 0-based. Throws InputError on a wrong field count, a negative or
+// non-integer id, an id too large for an int, an empty line. Ids are not
+// checked against a mesh here (read_scene does).
 std::vector<std::array<int, 2>> read_vertex_face_pairs(const std::filesystem::path& path);
 std::vector<std::array<int, 4>> read_edge_edge_pairs(const std::filesystem::path& path);
 
+// A scene directory's contents, ready for mesh_ccd:
+//   mesh_ccd({scene.positions_t0, scene.positions_t1, scene.faces}, scene.candidates)
 struct Scene {
-  std::string path;
+  std::string path;  // the directory, as given
   Eigen::MatrixXd positions_t0;
   Eigen::MatrixXd positions_t1;
   Eigen::MatrixXi faces;
@@ -81,12 +101,16 @@ struct Scene {
   std::optional<std::vector<bool>> edge_edge_truth;
 };
 
-// A directory holding t0.ply and t1.ply.
+// A directory holding t0.ply and t1.ply. Never throws (false when the path
+// cannot be examined).
 bool is_scene_directory(const std::filesystem::path& path);
 
 // t0.ply, t1.ply (same vertex count, faces from t0.ply), vf.csv and ee.csv
 // (either may be absent: an empty list), vf_truth.txt and ee_truth.txt
 // (optional; their length must match). Every index is checked against the mesh.
+// Throws InputError when the directory is not a scene directory, a file is
+// malformed, the vertex counts differ, an id is out of range or a truth
+// file's length does not match its candidate list.
 Scene read_scene(const std::filesystem::path& directory);
 
 }  // namespace batchccd

@@ -4,26 +4,57 @@
 
 namespace batchccd {
 
-// How decisions are made (DESIGN.md §3).
+// How decisions are made (DESIGN.md §3). A contact is the closed primitives
+// touching (distance exactly 0) at some t in [0, 1]; QueryResult::toi is
+// then the reported time of impact. What each mode promises of both:
 enum class Mode {
   // Certified floating point: never a false negative on any finite input; a
   // false positive only when the primitives come within `tolerance` (relative
   // to the query's size) of each other. The default.
+  // TOI: never after the first contact (a lower bound). At most
+  // toi_tolerance before it when the contact is a clean crossing (a certain
+  // root of the cubic with the primitives certainly overlapping around it);
+  // earlier when a near miss within about `tolerance` comes first, which is
+  // then where the reported contact is. Queries counted in
+  // Counters::undecided report a lower bound only.
   conservative,
   // The same filter and solver in plain double arithmetic, without error
   // bounds: what most engines ship. May miss contacts.
+  // TOI: usually as in conservative mode; no guarantee, it may lie after the
+  // first contact.
   fast,
   // The standard unfiltered cubic solver (roots of the coplanarity cubic in
   // double, then an inside test at each root): the seed paper's baseline.
   // May miss contacts.
+  // TOI: the double estimate of the first root that passes the inside test;
+  // no guarantee.
   cubic,
+  // Decisions equal to exact arithmetic on the inputs (doubles are dyadic
+  // rationals): no false positive and no false negative on any finite input.
+  // The certified path runs first; every query whose decision it leaves
+  // uncertain (a near miss within `tolerance`, a degenerate configuration,
+  // `exact_mode_iterations` exhausted) is settled with exact integer
+  // arithmetic (GMP) and counted in Counters::exact_escalations. Each such
+  // query costs a bounded amount of work (loops bounded by the degrees and
+  // bit sizes of its polynomials).
+  // TOI: never after the first contact, and less than 1e-12 (2^-40) of the
+  // step before it. With need_toi = false, as there: some lower bound.
+  exact,
 };
 
-// Instruction set for the batch kernels. `scalar` is the reference path.
+// Instruction set for the batch kernels. `scalar` is the reference path;
+// `automatic` picks the best this processor and build have. A batch call
+// with one that is not available throws std::invalid_argument (resolve_isa,
+// batch.hpp); single-query calls always run the scalar path.
 enum class Isa { automatic, scalar, sse4, avx2, avx512 };
 
+// Lower-case names as the command-line tool spells them ("conservative",
+// "auto", "avx2", ...); "?" for a value outside the enum. Never null.
 const char* to_string(Mode mode);
 const char* to_string(Isa isa);
+
+// Every knob of a call, with its default. Values are not validated; the
+// comments say what an out-of-range one does.
 
 struct Options {
   Mode mode = Mode::conservative;
@@ -32,7 +63,8 @@ struct Options {
   // it finds, and a hit's toi is then only some lower bound (possibly 0).
   bool need_toi = true;
 
-  // Mesh batches: which candidate lists to evaluate.
+  // Mesh batches: which candidate lists to evaluate (a list left out gets
+  // no results and no counts).
   bool vertex_face = true;
   bool edge_edge = true;
 
@@ -40,22 +72,42 @@ struct Options {
   // earliest TOI and the counters).
   bool per_candidate_results = true;
 
+  // The lane filters (DESIGN.md §2), each certified in conservative and
+  // exact modes; switch one off to measure the other. Mode cubic runs none.
+  bool sign_filter = true;        // Bernstein sign test on the coplanarity cubic
+  bool separation_filter = true;  // distance at t0 against the largest displacement
+
   Isa isa = Isa::automatic;
 
-  // Worker threads for batch calls; 0 = all the machine has.
+  // Worker threads for batch calls; 0 (or negative) = as many as the calling
+  // thread's task arena has: all the machine has unless the caller limited it.
   int threads = 0;
 
   // Conservative/fast solver: a contact is reported when the primitives are
   // within `tolerance` of each other, measured relative to the query's size
-  // (its largest coordinate difference from the first point).
+  // (its largest coordinate difference from the first point). Zero,
+  // negative or NaN: nothing is within tolerance, so near contacts run into
+  // max_iterations (reported as hits, never missed).
   double tolerance = 1e-9;
   // Conservative/fast solver: width of the time interval at which the first
   // contact is located (the reported TOI lies at most this much before it).
+  // A fraction of the step [0, 1]; values below 2^-45 act as 2^-45.
   double toi_tolerance = 1e-7;
   // Conservative/fast solver: boxes examined before giving up on one query;
   // a query that reaches it is reported as a hit at the earliest time not
-  // yet excluded (conservative), and counted in Counters::undecided.
+  // yet excluded (conservative), and counted in Counters::undecided. Zero
+  // or negative: the solver gives up at the first box it examines.
   std::int64_t max_iterations = 1 << 20;
+  // Exact mode: boxes the certified solver may examine on one query before
+  // the query goes to exact arithmetic (no answer is ever guessed: this only
+  // trades floating-point search for the bounded exact stage; zero or
+  // negative sends every query the solver cannot settle at once there).
+  std::int64_t exact_mode_iterations = 1 << 10;
+
+  // Batch calls: time each query's evaluation and report the slowest in
+  // Counters::max_query_seconds. Costs two clock reads a query, so it is
+  // off unless asked for (the command-line tool asks).
+  bool time_queries = false;
 };
 
 }  // namespace batchccd

@@ -7,11 +7,14 @@
 
 namespace batchccd {
 
+// A point. Coordinates in any length unit: none is assumed, and tolerances
+// are relative to each query's size.
 using Vec3 = Eigen::Vector3d;
 
 // The two elementary tests of triangle-mesh CCD (DESIGN.md §1).
 enum class Kind { vertex_face, edge_edge };
 
+// "vf" or "ee", the command-line tool's names. Never null.
 const char* to_string(Kind kind);
 
 // One elementary query: eight points, in the order of the query files
@@ -23,13 +26,28 @@ struct Query {
   std::array<Vec3, 8> points;
 };
 
+// Bad input, per query, in every mode and entry point (tests/test_bad_input.cpp):
+// - A NaN or infinite coordinate among the eight points: not evaluated;
+//   status = invalid_input, hit = true, toi = 0. In a batch only that query
+//   is affected; the others get the answers they get alone.
+// - Degenerate geometry is valid input, evaluated as the geometry it
+//   describes (status ok): a triangle with repeated or collinear corners is a
+//   segment or a point, an edge with equal endpoints a point. A vertex that
+//   is a corner of its own triangle, or two edges sharing an endpoint (mesh
+//   neighbours), touch throughout: a hit at toi = 0 (conservative and exact
+//   modes; fast and cubic may miss it as they may miss any contact). Broad
+//   phases usually leave such pairs out.
 enum class Status {
   ok,             // evaluated; hit and toi are meaningful
   invalid_input,  // a coordinate is NaN or infinite: not evaluated, hit is true
-                  // so that a caller that ignores status never skips a contact
+                  // (toi 0) so that a caller that ignores status never skips
+                  // a contact
 };
 
+// The answer to one query.
 struct QueryResult {
+  // The primitives touch at some t in [0, 1] (as far as Options::mode
+  // promises).
   bool hit = false;
   // Time of impact in [0, 1]: never later than the first contact (a lower
   // bound), +inf when there is none or when it was not asked for.
