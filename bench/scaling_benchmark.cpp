@@ -1,0 +1,93 @@
+// Thread scaling of whole batch calls (conservative mode, best instruction
+// set): 1 thread against 2 (and more where the machine has them), on the
+// built-in cloth scene's candidates (mesh and its positions cache-resident,
+// index lists streamed) and on the same candidates as raw queries (192 bytes
+// each, streamed from memory: bandwidth, not cores, is the limit there).
+//
+//   build/bench/batchccd_scaling_benchmark
+//
+// Compare items_per_second between thread counts of one run.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <thread>
+#include <vector>
+
+#include "batchccd/batchccd.hpp"
+#include "broad_phase.hpp"
+#include "scenes.hpp"
+
+namespace batchccd {
+namespace {
+
+struct Workload {
+  scenes::MovingMesh mesh;
+  Candidates candidates;
+  std::vector<Query> edge_edge_queries;
+};
+
+// About 2.2 million candidates (resolution 96).
+const Workload& workload() {
+  static const Workload data = [] {
+    Workload w;
+    w.mesh = scenes::cloth_scene({.resolution = 96});
+    const MeshView view = w.mesh.view();
+    w.candidates = scenes::swept_box_candidates(view, scenes::mean_edge_length(view));
+    for (const auto& e : w.candidates.edge_edge) {
+      Query q;
+      for (int k = 0; k < 4; ++k) {
+        q.points[k] = view.positions_t0.row(e[k]).transpose();
+        q.points[k + 4] = view.positions_t1.row(e[k]).transpose();
+      }
+      w.edge_edge_queries.push_back(q);
+    }
+    return w;
+  }();
+  return data;
+}
+
+Options with_threads(const benchmark::State& state) {
+  Options options;
+  options.threads = static_cast<int>(state.range(0));
+  options.per_candidate_results = false;  // the earliest TOI and counters only
+  return options;
+}
+
+void mesh_scene(benchmark::State& state) {
+  const Workload& w = workload();
+  const Options options = with_threads(state);
+  BatchResult result;
+  for (auto _ : state) {
+    result = mesh_ccd(w.mesh.view(), w.candidates, options);
+    benchmark::DoNotOptimize(result.earliest_toi);
+  }
+  state.SetItemsProcessed(state.iterations() * result.counters.candidates);
+  state.counters["threads"] = static_cast<double>(options.threads);
+}
+
+void streamed_queries(benchmark::State& state) {
+  const Workload& w = workload();
+  const Options options = with_threads(state);
+  BatchResult result;
+  for (auto _ : state) {
+    result = batch_ccd(Kind::edge_edge, w.edge_edge_queries, options);
+    benchmark::DoNotOptimize(result.earliest_toi);
+  }
+  state.SetItemsProcessed(state.iterations() * result.counters.candidates);
+  state.SetBytesProcessed(state.iterations() * result.counters.candidates *
+                          static_cast<std::int64_t>(sizeof(Query)));
+}
+
+void thread_counts(benchmark::internal::Benchmark* b) {
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  for (int threads = 1; threads <= std::max(2, cores); threads *= 2) b->Arg(threads);
+  b->UseRealTime();  // several threads: wall time is what a caller waits
+}
+
+BENCHMARK(mesh_scene)->Apply(thread_counts)->Unit(benchmark::kMillisecond);
+BENCHMARK(streamed_queries)->Apply(thread_counts)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace batchccd
+
+BENCHMARK_MAIN();
