@@ -5,37 +5,50 @@
 
 namespace batchccd {
 
+namespace {
+
+[[noreturn]] void refuse(const std::string& problem) {
+  throw std::invalid_argument("mesh_ccd: " + problem);
+}
+
+// A matrix with no rows holds nothing to index: any column count is accepted,
+// so that default-constructed (0 x 0) matrices describe an empty mesh.
+template <class Matrix>
+void check_three_columns(const Matrix& matrix, const char* name) {
+  if (matrix.rows() > 0 && matrix.cols() != 3)
+    refuse(std::string(name) + " must have 3 columns, it has " + std::to_string(matrix.cols()));
+}
+
+std::string range_text(Eigen::Index count) { return " out of range [0, " + std::to_string(count) + ")"; }
+
+}  // namespace
+
 void check_mesh(const MeshView& mesh, const Candidates& candidates) {
   const Eigen::Index n = mesh.positions_t0.rows();
-  if (mesh.positions_t0.cols() != 3 || mesh.positions_t1.cols() != 3)
-    throw std::invalid_argument("mesh_ccd: positions must have 3 columns");
+  const Eigen::Index m = mesh.faces.rows();
+  check_three_columns(mesh.positions_t0, "positions_t0");
+  check_three_columns(mesh.positions_t1, "positions_t1");
+  check_three_columns(mesh.faces, "faces");
   if (mesh.positions_t1.rows() != n)
-    throw std::invalid_argument("mesh_ccd: positions_t0 has " + std::to_string(n) +
-                                " rows but positions_t1 has " +
-                                std::to_string(mesh.positions_t1.rows()));
-  if (mesh.faces.size() > 0 && mesh.faces.cols() != 3)
-    throw std::invalid_argument("mesh_ccd: faces must have 3 columns");
-  auto check_vertex = [n](int id, const char* list, std::size_t item) {
-    if (id < 0 || id >= n)
-      throw std::invalid_argument("mesh_ccd: " + std::string(list) + " candidate " +
-                                  std::to_string(item) + ": vertex " + std::to_string(id) +
-                                  " out of range [0, " + std::to_string(n) + ")");
-  };
-  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
+    refuse("positions_t0 has " + std::to_string(n) + " rows but positions_t1 has " +
+           std::to_string(mesh.positions_t1.rows()));
+  for (Eigen::Index f = 0; f < m; ++f)
     for (int k = 0; k < 3; ++k) {
       const int id = mesh.faces(f, k);
-      if (id < 0 || id >= n)
-        throw std::invalid_argument("mesh_ccd: face " + std::to_string(f) + ": vertex " +
-                                    std::to_string(id) + " out of range [0, " +
-                                    std::to_string(n) + ")");
+      if (id < 0 || id >= n) refuse("face " + std::to_string(f) + ": vertex " + std::to_string(id) + range_text(n));
     }
+  auto check_vertex = [n](int id, const char* list, std::size_t item) {
+    if (id < 0 || id >= n)
+      refuse(std::string(list) + " candidate " + std::to_string(item) + ": vertex " + std::to_string(id) +
+             range_text(n));
+  };
+  // Every list is checked, also one that Options switches off: a bad index
+  // is a bug in the caller's broad phase, better told early.
   for (std::size_t i = 0; i < candidates.vertex_face.size(); ++i) {
     const auto [vertex, face] = candidates.vertex_face[i];
     check_vertex(vertex, "vertex-face", i);
-    if (face < 0 || face >= mesh.faces.rows())
-      throw std::invalid_argument("mesh_ccd: vertex-face candidate " + std::to_string(i) +
-                                  ": face " + std::to_string(face) + " out of range [0, " +
-                                  std::to_string(mesh.faces.rows()) + ")");
+    if (face < 0 || face >= m)
+      refuse("vertex-face candidate " + std::to_string(i) + ": face " + std::to_string(face) + range_text(m));
   }
   for (std::size_t i = 0; i < candidates.edge_edge.size(); ++i)
     for (int id : candidates.edge_edge[i]) check_vertex(id, "edge-edge", i);
