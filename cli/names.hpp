@@ -21,10 +21,11 @@ inline constexpr NameTable<Kind, 2> kind_names{{
     {"ee", Kind::edge_edge},
 }};
 
-inline constexpr NameTable<Mode, 3> mode_names{{
+inline constexpr NameTable<Mode, 4> mode_names{{
     {"conservative", Mode::conservative},
     {"fast", Mode::fast},
     {"cubic", Mode::cubic},
+    {"exact", Mode::exact},
 }};
 
 inline constexpr NameTable<Isa, 5> isa_names{{

@@ -1,5 +1,6 @@
 #include "report_format.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -119,6 +120,8 @@ std::string json_line(const InputReport& report) {
       {"culled", std::to_string(report.culled)},
       {"seconds", json_number(report.seconds)},
       {"queries_per_second", json_number(report.queries_per_second())},
+      {"exact_escalations", std::to_string(report.exact_escalations)},
+      {"max_query_seconds", json_number(report.max_query_seconds)},
   };
   std::string line = "{";
   for (const auto& [name, value] : fields) {
@@ -143,7 +146,7 @@ constexpr Column table_columns[] = {
     {"input", false},     {"kind", false},      {"queries", true},
     {"hits", true},       {"positives", true},  {"false_pos", true},
     {"false_neg", true},  {"culled", true},     {"seconds", true},
-    {"queries/s", true},
+    {"queries/s", true},  {"exact", true},      {"max_query_s", true},
 };
 
 std::string fixed(double value, int decimals) {
@@ -166,7 +169,9 @@ Row table_row(const InputReport& report) {
           cell(report.false_negatives),
           std::to_string(report.culled),
           fixed(report.seconds, 6),
-          fixed(report.queries_per_second(), 0)};
+          fixed(report.queries_per_second(), 0),
+          std::to_string(report.exact_escalations),
+          fixed(report.max_query_seconds, 6)};
 }
 
 // A truth column's total is shown only when every row has it.
@@ -187,6 +192,8 @@ Row totals_row(const std::vector<InputReport>& reports) {
     total.hits += report.hits;
     total.culled += report.culled;
     total.seconds += report.seconds;
+    total.exact_escalations += report.exact_escalations;
+    total.max_query_seconds = std::max(total.max_query_seconds, report.max_query_seconds);
   }
   total.positives = total_of(reports, &InputReport::positives);
   total.false_positives = total_of(reports, &InputReport::false_positives);

@@ -22,7 +22,8 @@ std::string round_trip_decimal(double value);
 
 // One JSON object, no newline: input, kind, mode, isa, threads, queries,
 // hits, positives, false_positives, false_negatives (null without ground
-// truth), culled, seconds, queries_per_second.
+// truth), culled, seconds, queries_per_second, exact_escalations,
+// max_query_seconds.
 std::string json_line(const InputReport& report);
 
 // One row per report and a totals row, columns aligned; nothing when there

@@ -81,6 +81,8 @@ Options options_for_call(const RunSettings& settings, bool truth_known) {
   Options options = settings.options;
   // Per-query results cost memory: ask for them only when they are used.
   options.per_candidate_results = settings.keep_results || truth_known;
+  // max_query_seconds is reported for every input (two clock reads a query).
+  options.time_queries = true;
   return options;
 }
 
@@ -121,6 +123,8 @@ InputReport make_report(std::string input, Kind kind, std::size_t query_count,
   report.queries = static_cast<std::int64_t>(query_count);
   report.hits = timed_result.result.counters.hits;
   report.culled = timed_result.result.counters.culled;
+  report.exact_escalations = timed_result.result.counters.exact_escalations;
+  report.max_query_seconds = timed_result.result.counters.max_query_seconds;
   report.seconds = timed_result.seconds;
   report.results = std::move(timed_result.result.results);
   if (options.per_candidate_results && report.results.size() != query_count) {

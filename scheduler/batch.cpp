@@ -37,6 +37,7 @@ void tally(const reference::Evaluation& e, Partial& partial) {
   c.hits += e.result.hit;
   c.undecided += e.undecided;
   c.invalid += e.result.status != Status::ok;
+  reference::count_exact_stage_and_time(e, c);
   if (e.result.hit) partial.earliest_toi = std::min(partial.earliest_toi, e.result.toi);
 }
 
@@ -49,7 +50,8 @@ template <class Source>
 void run_source(const Source& source, std::size_t count, simd::FilterFunction<Source> filter,
                 const Options& options, std::size_t offset, BatchResult& batch) {
   const bool filtered = options.mode != Mode::cubic;  // the baseline runs unfiltered
-  const bool certified = options.mode != Mode::fast;
+  const reference::FilterSettings settings{options.mode != Mode::fast, options.sign_filter,
+                                           options.separation_filter};
   tbb::combinable<Partial> partials;
   tbb::enumerable_thread_specific<std::vector<std::uint32_t>> survivor_buffers;
   auto work = [&] {
@@ -59,14 +61,17 @@ void run_source(const Source& source, std::size_t count, simd::FilterFunction<So
           std::vector<std::uint32_t>& survivors = survivor_buffers.local();
           if (survivors.size() < range.size()) survivors.resize(std::max(range.size(), kBatchSize));
           std::size_t kept = range.size();
+          simd::FilterCounts culls;
           if (filtered) {
-            kept = filter(source, range.begin(), range.end(), certified, survivors.data());
+            kept = filter(source, range.begin(), range.end(), settings, survivors.data(), culls);
           } else {
             std::iota(survivors.begin(), survivors.begin() + static_cast<std::ptrdiff_t>(kept), 0u);
           }
           Partial& partial = partials.local();
           partial.counters.candidates += static_cast<std::int64_t>(range.size());
           partial.counters.culled += static_cast<std::int64_t>(range.size() - kept);
+          partial.counters.culled_by_sign += static_cast<std::int64_t>(culls.sign);
+          partial.counters.culled_by_separation += static_cast<std::int64_t>(culls.separation);
           for (std::size_t j = 0; j < kept; ++j) {
             const std::size_t i = range.begin() + survivors[j];
             const reference::Evaluation e =

@@ -238,7 +238,7 @@ const std::vector<std::string> json_field_names = {
     "input",     "kind",           "mode",           "isa",
     "threads",   "queries",        "hits",           "positives",
     "false_positives", "false_negatives", "culled", "seconds",
-    "queries_per_second"};
+    "queries_per_second", "exact_escalations", "max_query_seconds"};
 
 // ---- running the executable -------------------------------------------------
 
@@ -324,7 +324,8 @@ TEST_F(CliTest, HelpDocumentsEveryOption) {
     const CliRun result = run_cli(arguments);
     EXPECT_EQ(result.exit_code, 0);
     for (const char* option : {"--kind", "--truth", "--mode", "--threads", "--isa", "--json",
-                               "--out", "conservative", "fast", "cubic", "avx512", "INPUT"}) {
+                               "--out", "conservative", "fast", "cubic", "exact", "avx512",
+                               "INPUT", "exact_escalations", "max_query_seconds"}) {
       EXPECT_NE(result.out.find(option), std::string::npos) << arguments.front() << ": " << option;
     }
   }
@@ -337,7 +338,7 @@ TEST_F(CliTest, BadCommandLinesExitTwoWithUsage) {
       {"run"},
       {"run", "--json"},
       {"run", "--bogus", "vf/q.csv"},
-      {"run", "--mode", "exact", "vf/q.csv"},
+      {"run", "--mode", "exactly", "vf/q.csv"},
       {"run", "--mode=sloppy", "vf/q.csv"},
       {"run", "vf/q.csv", "--mode"},
       {"run", "--threads", "0", "vf/q.csv"},
@@ -364,6 +365,7 @@ TEST_F(CliTest, AcceptsEveryDocumentedOptionForm) {
   for (const std::vector<std::string>& arguments :
        {std::vector<std::string>{"run", "--mode", "fast", "--threads", "2", "vf/q.csv"},
         std::vector<std::string>{"run", "--mode=cubic", "--isa=scalar", "vf/q.csv"},
+        std::vector<std::string>{"run", "--mode", "exact", "vf/q.csv"},
         std::vector<std::string>{"run", "--isa", "auto", "--kind", "vf", "--", "vf/q.csv"}}) {
     const CliRun result = run_cli(arguments);
     EXPECT_EQ(result.exit_code, 0) << result.err;
@@ -392,6 +394,27 @@ TEST_F(CliTest, JsonHasEveryFieldAndCountsAgainstTruth) {
   EXPECT_EQ(object.at("false_positives"), "0");
   EXPECT_EQ(object.at("false_negatives"), "0");
   EXPECT_GE(std::stod(object.at("seconds")), 0.0);
+}
+
+TEST_F(CliTest, JsonCountsExactEscalationsAndTheSlowestQueryInEveryMode) {
+  write_file(path("vertex-face/q.csv"), vertex_face_hit_and_miss);
+  for (const char* mode : {"conservative", "fast", "cubic", "exact"}) {
+    const auto objects = run_json({"--mode", mode, "vertex-face/q.csv"});
+    ASSERT_EQ(objects.size(), 1u) << mode;
+    const auto& object = objects.front();
+    EXPECT_EQ(object.at("mode"), mode);
+    EXPECT_EQ(object.at("false_positives"), "0") << mode;
+    EXPECT_EQ(object.at("false_negatives"), "0") << mode;
+    const double slowest = std::stod(object.at("max_query_seconds"));
+    EXPECT_GE(slowest, 0.0) << mode;
+    EXPECT_LE(slowest, std::stod(object.at("seconds"))) << mode;
+    // Only exact mode uses exact arithmetic (here at most for the hit's TOI).
+    if (std::string(mode) == "exact") {
+      EXPECT_LE(std::stoi(object.at("exact_escalations")), 1);
+    } else {
+      EXPECT_EQ(object.at("exact_escalations"), "0") << mode;
+    }
+  }
 }
 
 TEST_F(CliTest, TruthFieldsAreNullWithoutTruthAndFilledByTruthFile) {

@@ -1,3 +1,5 @@
+#include <algorithm>
+
 #include "batchccd/batch.hpp"
 #include "batchccd/options.hpp"
 #include "batchccd/query.hpp"
@@ -11,6 +13,7 @@ const char* to_string(Mode mode) {
     case Mode::conservative: return "conservative";
     case Mode::fast: return "fast";
     case Mode::cubic: return "cubic";
+    case Mode::exact: return "exact";
   }
   return "?";
 }
@@ -29,10 +32,14 @@ const char* to_string(Isa isa) {
 Counters& Counters::operator+=(const Counters& other) {
   candidates += other.candidates;
   culled += other.culled;
+  culled_by_sign += other.culled_by_sign;
+  culled_by_separation += other.culled_by_separation;
   solved += other.solved;
   hits += other.hits;
   undecided += other.undecided;
   invalid += other.invalid;
+  exact_escalations += other.exact_escalations;
+  max_query_seconds = std::max(max_query_seconds, other.max_query_seconds);
   return *this;
 }
 
