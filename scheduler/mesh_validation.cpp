@@ -1,5 +1,6 @@
 #include "mesh_validation.hpp"
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -21,6 +22,24 @@ void check_three_columns(const Matrix& matrix, const char* name) {
 
 std::string range_text(Eigen::Index count) { return " out of range [0, " + std::to_string(count) + ")"; }
 
+// id outside [0, count), negative ids included, in one comparison.
+bool outside(int id, Eigen::Index count) {
+  return static_cast<std::uint64_t>(static_cast<std::int64_t>(id)) >= static_cast<std::uint64_t>(count);
+}
+
+// One branch-free pass over every index, so that a valid call (the common
+// case) pays for no per-index message machinery.
+bool all_in_range(const MeshView& mesh, const Candidates& candidates) {
+  const Eigen::Index n = mesh.positions_t0.rows(), m = mesh.faces.rows();
+  bool any_outside = false;
+  for (Eigen::Index i = 0; i < mesh.faces.size(); ++i) any_outside |= outside(mesh.faces.data()[i], n);
+  for (const auto& [vertex, face] : candidates.vertex_face)
+    any_outside |= outside(vertex, n) | outside(face, m);
+  for (const auto& pair : candidates.edge_edge)
+    for (int id : pair) any_outside |= outside(id, n);
+  return !any_outside;
+}
+
 }  // namespace
 
 void check_mesh(const MeshView& mesh, const Candidates& candidates) {
@@ -32,6 +51,8 @@ void check_mesh(const MeshView& mesh, const Candidates& candidates) {
   if (mesh.positions_t1.rows() != n)
     refuse("positions_t0 has " + std::to_string(n) + " rows but positions_t1 has " +
            std::to_string(mesh.positions_t1.rows()));
+  if (all_in_range(mesh, candidates)) return;
+  // Something is out of range: find the first offender and name it.
   for (Eigen::Index f = 0; f < m; ++f)
     for (int k = 0; k < 3; ++k) {
       const int id = mesh.faces(f, k);
