@@ -7,6 +7,7 @@
 #include <ostream>
 #include <span>
 #include <stdexcept>
+#include <system_error>
 #include <thread>
 #include <utility>
 
@@ -208,7 +209,10 @@ RunOutcome run_inputs(const RunSettings& settings, std::ostream& errors) {
   for (const fs::path& input : settings.inputs) {
     // A shell glob over a data folder also names its LICENSE or README: a
     // plain file that is no CSV is passed over, said once, not an error.
-    if (fs::is_regular_file(input) && input.extension() != ".csv") {
+    // (The error_code form: a path the system cannot even stat is an input
+    // error reported below, never an exception that loses the others.)
+    std::error_code unreadable;
+    if (fs::is_regular_file(input, unreadable) && input.extension() != ".csv") {
       errors << "note: " << input.string() << ": skipped, not a query file (*.csv) or a scene\n";
       continue;
     }

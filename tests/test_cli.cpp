@@ -516,6 +516,17 @@ TEST_F(CliTest, PlainFileThatIsNoCsvIsPassedOverWithANote) {
   EXPECT_NE(result.err.find("LICENSE: skipped"), std::string::npos) << result.err;
 }
 
+// A path the system cannot stat (a component over 255 characters) is an
+// input error like any other: the good inputs' results are kept.
+TEST_F(CliTest, UnstatablePathLosesNothing) {
+  write_file(path("vf/good.csv"), vertex_face_hit_and_miss);
+  const CliRun result =
+      run_cli({"run", "--json", "--out", "results.txt", "vf/good.csv", std::string(300, 'a')});
+  EXPECT_EQ(result.exit_code, 1) << result.err;
+  EXPECT_EQ(lines_of(result.out).size(), 1u) << result.out;
+  EXPECT_EQ(lines_of(read_file(path("results.txt"))).size(), 2u);
+}
+
 // An instruction set this build lacks is refused, never silently replaced.
 TEST_F(CliTest, UnavailableInstructionSetIsAnError) {
   write_file(path("vf/good.csv"), vertex_face_hit_and_miss);
