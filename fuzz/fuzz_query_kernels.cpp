@@ -63,19 +63,6 @@ std::vector<Mode> modes_to_check() {
 
 bool is_certified(Mode mode) { return mode == Mode::conservative || mode == exact_mode(); }
 
-// The instruction sets this build and processor run (the lane kernels join
-// as they become available).
-std::vector<Isa> isas_to_check() {
-  std::vector<Isa> isas;
-  for (const Isa isa : {Isa::scalar, Isa::sse4, Isa::avx2, Isa::avx512}) {
-    try {
-      batchccd::resolve_isa(isa);
-      isas.push_back(isa);
-    } catch (const std::invalid_argument&) {
-    }
-  }
-  return isas;
-}
 
 // A fuzz input must not take seconds: a smaller search budget keeps the
 // runs fast, and an exhausted budget is still answered soundly (a hit).
@@ -225,7 +212,7 @@ void check_batch(Kind kind, const std::vector<const KernelRecord*>& records, con
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const batchccd::fuzz::KernelInput input = batchccd::fuzz::decode_input(std::span(data, size));
   static const std::vector<Mode> modes = modes_to_check();
-  static const std::vector<Isa> isas = isas_to_check();
+  static const std::vector<Isa> isas = batchccd::available_isas();
   const std::size_t mode_index = input.setup.mode_index % modes.size();
   const Isa isa = isas[input.setup.isa_index % isas.size()];
   // A batch call shares one need_toi: group by kind and need_toi.

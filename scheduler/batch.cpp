@@ -98,6 +98,19 @@ void run_source(const Source& source, std::size_t count, simd::FilterFunction<So
 
 Isa resolve_isa(Isa requested) { return simd::filter_kernels(requested).isa; }
 
+std::vector<Isa> available_isas() {
+  std::vector<Isa> isas;
+  for (const Isa isa : {Isa::scalar, Isa::sse4, Isa::avx2, Isa::avx512}) {
+    try {
+      simd::filter_kernels(isa);
+      isas.push_back(isa);
+    } catch (const std::invalid_argument&) {
+      // not on this processor
+    }
+  }
+  return isas;
+}
+
 BatchResult batch_ccd(Kind kind, std::span<const Query> queries, const Options& options) {
   const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
   BatchResult batch;

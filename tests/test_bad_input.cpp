@@ -64,19 +64,6 @@ Options with_mode(Mode mode) {
   return options;
 }
 
-// The instruction sets this build and processor run: the scalar reference
-// path always, the lane kernels where they exist.
-std::vector<Isa> available_isas() {
-  std::vector<Isa> isas;
-  for (const Isa isa : {Isa::scalar, Isa::sse4, Isa::avx2, Isa::avx512}) {
-    try {
-      batchccd::resolve_isa(isa);
-      isas.push_back(isa);
-    } catch (const std::invalid_argument&) {
-    }
-  }
-  return isas;
-}
 
 void expect_invalid(const QueryResult& r) {
   EXPECT_EQ(r.status, Status::invalid_input);
@@ -185,7 +172,7 @@ std::vector<Query> mixed_batch(Kind kind) {
 TEST(BadInputNonFinite, BatchAnswersValidQueriesAsAloneAndFlagsTheRest) {
   for (const Kind kind : {Kind::vertex_face, Kind::edge_edge})
     for (const Mode mode : kModes)
-      for (const Isa isa : available_isas()) {
+      for (const Isa isa : batchccd::available_isas()) {
         SCOPED_TRACE(std::string(batchccd::to_string(kind)) + " " + batchccd::to_string(mode) + " " +
                      batchccd::to_string(isa));
         const std::vector<Query> queries = mixed_batch(kind);
@@ -243,7 +230,7 @@ void expect_empty(const BatchResult& batch) {
 TEST(BadInputEmpty, EmptyQueryListGivesEmptyResult) {
   for (const Kind kind : {Kind::vertex_face, Kind::edge_edge})
     for (const Mode mode : kModes)
-      for (const Isa isa : available_isas()) {
+      for (const Isa isa : batchccd::available_isas()) {
         Options options = with_mode(mode);
         options.isa = isa;
         expect_empty(batchccd::batch_ccd(kind, {}, options));
@@ -342,7 +329,7 @@ TEST(BadInputDegenerateMesh, DegenerateCandidatesAreEvaluatedAsTheirGeometry) {
 TEST(BadInputDegenerateMesh, EveryModeAndInstructionSetGivesWellFormedAnswers) {
   const TestMesh mesh = degenerate_mesh();
   for (const Mode mode : kModes)
-    for (const Isa isa : available_isas()) {
+    for (const Isa isa : batchccd::available_isas()) {
       SCOPED_TRACE(std::string(batchccd::to_string(mode)) + " " + batchccd::to_string(isa));
       Options options = with_mode(mode);
       options.isa = isa;

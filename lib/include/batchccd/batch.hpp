@@ -49,6 +49,10 @@ struct BatchResult {
 // a forced one is not available.
 Isa resolve_isa(Isa requested);
 
+// Every instruction set a batch call can be forced to on this processor and
+// build, the scalar reference path first.
+std::vector<Isa> available_isas();
+
 // Raw queries, all of one kind, evaluated in parallel (Options::threads).
 // Per query, the promises of ccd.hpp. Throws std::invalid_argument when
 // options.isa is not available; a query with a NaN or infinite coordinate
