@@ -32,7 +32,6 @@ constexpr std::size_t kBatchSize = 2048;
 
 void tally(const reference::Evaluation& e, Partial& partial) {
   Counters& c = partial.counters;
-  c.culled += e.culled;  // the reference filter agrees with the lanes: 0 here
   c.solved += !e.culled && e.result.status == Status::ok;
   c.hits += e.result.hit;
   c.undecided += e.undecided;
@@ -75,7 +74,7 @@ void run_source(const Source& source, std::size_t count, simd::FilterFunction<So
           for (std::size_t j = 0; j < kept; ++j) {
             const std::size_t i = range.begin() + survivors[j];
             const reference::Evaluation e =
-                reference::evaluate_query(source.kind, simd::query_at(source, i), options);
+                reference::evaluate_query(source.kind, simd::query_at(source, i), options, filtered);
             tally(e, partial);
             if (options.per_candidate_results) batch.results[offset + i] = e.result;
           }

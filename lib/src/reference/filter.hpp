@@ -25,7 +25,7 @@ FilterVerdict run_filters(Kind kind, const ScaledQuery& query, const FilterSetti
 bool sign_filter_culls(const ScaledQuery& query, bool certified);
 
 // The separation filter's error model: relative bound and absolute floor,
-// or disabled (floor < 0) when underflow was magnified too much to bound.
+// and whether it applies at all (not when underflow was magnified too much to bound).
 struct SeparationErrorModel {
   double relative;
   double floor;

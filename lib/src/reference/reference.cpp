@@ -38,7 +38,7 @@ void settle_exactly(Kind kind, const Query& query, const Options& options, Evalu
   evaluation.result = outcome.hit ? QueryResult{true, outcome.toi, Status::ok} : QueryResult{};
 }
 
-Evaluation evaluate(Kind kind, const Query& query, const Options& options) {
+Evaluation evaluate(Kind kind, const Query& query, const Options& options, bool filtered) {
   Evaluation evaluation;
   const ScaledQuery scaled = scale_query(kind, query);
   if (!scaled.finite) {
@@ -60,7 +60,9 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options) {
     }
     return evaluation;
   }
-  if (run_filters(kind, scaled, {options.mode != Mode::fast, options.sign_filter, options.separation_filter}).culled()) {
+  const FilterSettings filters{options.mode != Mode::fast, options.sign_filter,
+                               options.separation_filter};
+  if (!filtered && run_filters(kind, scaled, filters).culled()) {
     evaluation.culled = true;
     return evaluation;
   }
@@ -89,10 +91,10 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options) {
 
 }  // namespace
 
-Evaluation evaluate_query(Kind kind, const Query& query, const Options& options) {
-  if (!options.time_queries) return evaluate(kind, query, options);
+Evaluation evaluate_query(Kind kind, const Query& query, const Options& options, bool filtered) {
+  if (!options.time_queries) return evaluate(kind, query, options, filtered);
   const auto start = std::chrono::steady_clock::now();
-  Evaluation evaluation = evaluate(kind, query, options);
+  Evaluation evaluation = evaluate(kind, query, options, filtered);
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
   evaluation.seconds = elapsed.count();
   return evaluation;

@@ -26,7 +26,10 @@ struct Evaluation {
 // The whole scalar reference path for one query (DESIGN.md §2-3): scale,
 // filter, solve, and in exact mode settle what stays uncertain exactly. The
 // SIMD path must agree with it decision for decision.
-Evaluation evaluate_query(Kind kind, const Query& query, const Options& options);
+// filtered: the lane filters already kept this query (a batch survivor), so
+// they are not run again.
+Evaluation evaluate_query(Kind kind, const Query& query, const Options& options,
+                          bool filtered = false);
 
 // Adds what the batch counters take from an evaluation beyond hits, culls
 // and the like: exact escalations and the slowest query's time.
