@@ -68,7 +68,7 @@ const std::vector<Query>& streamed_queries() {
 // Which filters a benchmark runs: its range(0) (0 sign, 1 separation, 2 both).
 reference::FilterSettings settings(const benchmark::State& state) {
   const auto which = state.range(0);
-  return {true, which != 1, which != 0};
+  return {.certified = true, .sign = which != 1, .subdivide = true, .separation = which != 0};
 }
 
 const simd::FilterKernels* kernels_for(benchmark::State& state, Isa isa) {

@@ -4,15 +4,12 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <ostream>
 #include <stdexcept>
-#include <system_error>
 #include <utility>
 
-#include <unistd.h>
-
 #include "names.hpp"
+#include "text_output.hpp"
 
 namespace batchccd::cli {
 
@@ -137,23 +134,12 @@ namespace {
 
 using Row = std::vector<std::string>;
 
-struct Column {
-  std::string_view header;
-  bool right_aligned;
-};
-
-constexpr Column table_columns[] = {
+constexpr TableColumn table_columns[] = {
     {"input", false},     {"kind", false},      {"queries", true},
     {"hits", true},       {"positives", true},  {"false_pos", true},
     {"false_neg", true},  {"culled", true},     {"seconds", true},
     {"queries/s", true},  {"exact", true},      {"max_query_s", true},
 };
-
-std::string fixed(double value, int decimals) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
-  return buffer;
-}
 
 std::string cell(const std::optional<std::int64_t>& value) {
   return value ? std::to_string(*value) : "-";
@@ -204,26 +190,6 @@ Row totals_row(const std::vector<InputReport>& reports) {
   return row;
 }
 
-std::vector<std::size_t> column_widths(const std::vector<Row>& rows) {
-  std::vector<std::size_t> widths;
-  for (const Column& column : table_columns) widths.push_back(column.header.size());
-  for (const Row& row : rows) {
-    for (std::size_t i = 0; i < row.size(); ++i) widths[i] = std::max(widths[i], row[i].size());
-  }
-  return widths;
-}
-
-void print_row(std::ostream& out, const Row& row, const std::vector<std::size_t>& widths) {
-  std::string line;
-  for (std::size_t i = 0; i < row.size(); ++i) {
-    const std::string padding(widths[i] - row[i].size(), ' ');
-    if (i > 0) line += "  ";
-    line += table_columns[i].right_aligned ? padding + row[i] : row[i] + padding;
-  }
-  while (!line.empty() && line.back() == ' ') line.pop_back();
-  out << line << '\n';
-}
-
 }  // namespace
 
 void print_table(std::ostream& out, const std::vector<InputReport>& reports) {
@@ -232,13 +198,10 @@ void print_table(std::ostream& out, const std::vector<InputReport>& reports) {
   const InputReport& first = reports.front();
   out << "mode " << name_of(first.mode) << ", isa " << name_of(first.isa) << ", threads "
       << first.threads << '\n';
-  Row header;
-  for (const Column& column : table_columns) header.emplace_back(column.header);
-  std::vector<Row> rows = {header};
+  std::vector<Row> rows;
   for (const InputReport& report : reports) rows.push_back(table_row(report));
   rows.push_back(totals_row(reports));
-  const std::vector<std::size_t> widths = column_widths(rows);
-  for (const Row& row : rows) print_row(out, row, widths);
+  print_aligned(out, table_columns, rows);
 }
 
 // ---- results file ---------------------------------------------------------
@@ -249,26 +212,10 @@ std::string result_line(const QueryResult& result) {
 
 void write_results_file(const std::filesystem::path& file,
                         const std::vector<InputReport>& reports) {
-  std::filesystem::path temporary = file;
-  temporary += ".tmp-" + std::to_string(::getpid());
-  const auto fail = [&](const std::string& problem) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw std::runtime_error(problem);
-  };
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) fail("cannot create " + temporary.string());
-    for (const InputReport& report : reports) {
+  write_file_atomically(file, [&](std::ostream& out) {
+    for (const InputReport& report : reports)
       for (const QueryResult& result : report.results) out << result_line(result) << '\n';
-    }
-    out.close();
-    if (!out) fail("cannot write " + temporary.string());
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, file, error);
-  if (error) fail("cannot rename " + temporary.string() + " to " + file.string() + ": " +
-                  error.message());
+  });
 }
 
 }  // namespace batchccd::cli

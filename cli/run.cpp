@@ -21,12 +21,6 @@ double InputReport::queries_per_second() const {
 
 namespace {
 
-// One unit of work found behind a command-line input.
-struct FoundInput {
-  fs::path path;
-  bool is_scene = false;
-};
-
 bool is_query_file_candidate(const fs::directory_entry& entry,
                              const std::optional<Kind>& fallback_kind) {
   return entry.is_regular_file() && entry.path().extension() == ".csv" &&
@@ -56,14 +50,6 @@ std::vector<FoundInput> find_inputs_in_directory(const fs::path& root,
                      "edge-edge/ee) and no scenes found");
   }
   return found;
-}
-
-std::vector<FoundInput> expand_input(const fs::path& input,
-                                     const std::optional<Kind>& fallback_kind) {
-  if (!fs::exists(input)) throw InputError(input.string(), 0, "no such file or directory");
-  if (is_scene_directory(input)) return {{input, true}};
-  if (fs::is_directory(input)) return find_inputs_in_directory(input, fallback_kind);
-  return {{input, false}};
 }
 
 Kind kind_of_query_file(const fs::path& file, const std::optional<Kind>& fallback_kind) {
@@ -204,20 +190,28 @@ void run_guarded(const fs::path& input, RunOutcome& outcome, std::ostream& error
 
 }  // namespace
 
+std::vector<FoundInput> find_inputs(const fs::path& input, const std::optional<Kind>& fallback_kind,
+                                    std::ostream& notes) {
+  // A shell glob over a data folder also names its LICENSE or README: a
+  // plain file that is no CSV is passed over, said once, not an error.
+  // (The error_code form: a path the system cannot even stat is an input
+  // error thrown below.)
+  std::error_code unreadable;
+  if (fs::is_regular_file(input, unreadable) && input.extension() != ".csv") {
+    notes << "note: " << input.string() << ": skipped, not a query file (*.csv) or a scene\n";
+    return {};
+  }
+  if (!fs::exists(input)) throw InputError(input.string(), 0, "no such file or directory");
+  if (is_scene_directory(input)) return {{input, true}};
+  if (fs::is_directory(input)) return find_inputs_in_directory(input, fallback_kind);
+  return {{input, false}};
+}
+
 RunOutcome run_inputs(const RunSettings& settings, std::ostream& errors) {
   RunOutcome outcome;
   for (const fs::path& input : settings.inputs) {
-    // A shell glob over a data folder also names its LICENSE or README: a
-    // plain file that is no CSV is passed over, said once, not an error.
-    // (The error_code form: a path the system cannot even stat is an input
-    // error reported below, never an exception that loses the others.)
-    std::error_code unreadable;
-    if (fs::is_regular_file(input, unreadable) && input.extension() != ".csv") {
-      errors << "note: " << input.string() << ": skipped, not a query file (*.csv) or a scene\n";
-      continue;
-    }
     std::vector<FoundInput> found;
-    run_guarded(input, outcome, errors, [&] { found = expand_input(input, settings.kind); });
+    run_guarded(input, outcome, errors, [&] { found = find_inputs(input, settings.kind, errors); });
     for (const FoundInput& item : found) {
       run_guarded(item.path, outcome, errors, [&] {
         std::vector<InputReport> reports = item.is_scene ? run_scene(item.path, settings)

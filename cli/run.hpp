@@ -61,6 +61,20 @@ struct RunOutcome {
   bool any_error = false;            // some input failed; told on `errors`
 };
 
+// One unit of work behind a command-line input.
+struct FoundInput {
+  std::filesystem::path path;
+  bool is_scene = false;  // a scene directory; else a query CSV
+};
+
+// What an input stands for: itself (a query file or a scene directory), or
+// the query files and scenes found under a directory, in sorted path order.
+// A plain file that is not a CSV is passed over with a note on `notes`.
+// Throws InputError when the input does not exist or a directory holds
+// nothing to run.
+std::vector<FoundInput> find_inputs(const std::filesystem::path& input,
+                                    const std::optional<Kind>& fallback_kind, std::ostream& notes);
+
 // Runs every input; an input that fails is reported on `errors` (one line
 // naming the file and, where there is one, the line) and the rest still run.
 RunOutcome run_inputs(const RunSettings& settings, std::ostream& errors);

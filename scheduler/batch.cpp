@@ -49,8 +49,7 @@ template <class Source>
 void run_source(const Source& source, std::size_t count, simd::FilterFunction<Source> filter,
                 const Options& options, std::size_t offset, BatchResult& batch) {
   const bool filtered = options.mode != Mode::cubic;  // the baseline runs unfiltered
-  const reference::FilterSettings settings{options.mode != Mode::fast, options.sign_filter,
-                                           options.separation_filter};
+  const reference::FilterSettings settings = reference::filter_settings(options);
   tbb::combinable<Partial> partials;
   tbb::enumerable_thread_specific<std::vector<std::uint32_t>> survivor_buffers;
   auto work = [&] {

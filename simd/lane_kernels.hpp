@@ -34,42 +34,60 @@ struct Lanes {
   using Vector = reference::Vector3<Double>;
   static constexpr std::size_t size = Double::size;
 
-  static Double bits(std::uint64_t pattern) {
-    return xsimd::bitwise_cast<Double>(xsimd::batch<std::uint64_t, Arch>(pattern));
-  }
-
   // 2^-ilogb(m) for positive m, as two factors whose product is exact to
   // apply (scaling up) or a single factor (scaling down): x * first * second
   // equals std::ldexp(x, -ilogb(m)) bit for bit, subnormals included.
   struct PowerOfTwo {
     Double first, second;
     Double apply(const Double& x) const { return x * first * second; }
+    void scale(Vector* v, std::size_t n) const {
+      for (std::size_t i = 0; i < n; ++i) v[i] = {apply(v[i].x), apply(v[i].y), apply(v[i].z)};
+    }
   };
   static PowerOfTwo inverse_power_of_two(const Double& m) {
+    using Bits = xsimd::batch<std::uint64_t, Arch>;
     const Mask subnormal = m < Double(0x1p-1022);
     const Double normal = xsimd::select(subnormal, m * Double(0x1p64), m);
-    const Double leading = normal & bits(0x7ff0000000000000ull);  // 2^floor(log2)
-    return {Double(1.0) / leading, xsimd::select(subnormal, Double(0x1p64), Double(1.0))};
+    // 2^e has biased exponent E = e + 1023 in [1, 2046]; 2^-e has 2046 - E,
+    // an integer subtraction instead of a division. Only 2^1023 (E = 2046)
+    // has a subnormal inverse, 2^-1023.
+    const Bits leading = xsimd::bitwise_cast<Bits>(normal) & Bits(0x7ff0000000000000ull);
+    const Double inverse =
+        xsimd::select(xsimd::bitwise_cast<Double>(leading) == Double(0x1p1023), Double(0x1p-1023),
+                      xsimd::bitwise_cast<Double>(Bits(0x7fe0000000000000ull) - leading));
+    return {inverse, xsimd::select(subnormal, Double(0x1p64), Double(1.0))};
   }
 };
 
-// Loads lanes first .. first + count - 1 of a source into x[k][tau] (DESIGN.md's
-// x_{k+1} at t = tau); lanes past count repeat the last candidate.
+// Loads candidate `candidate[j]` of a source into lane j of x[k][tau]
+// (DESIGN.md's x_{k+1} at t = tau).
 template <class Arch>
 struct Gather {
   using L = Lanes<Arch>;
   using Double = typename L::Double;
   using Index = typename L::Index;
   using Vector = typename L::Vector;
+  using Candidates = std::int64_t[L::size];
 
-  static Vector at(const double* x, const double* y, const double* z, const Index& index) {
-    return {Double::gather(x, index), Double::gather(y, index), Double::gather(z, index)};
+  // The processor's gather instruction where it has one (xsimd 8.1 loads
+  // lane by lane).
+  static Double gather(const double* base, const Index& index) {
+    if constexpr (std::is_base_of_v<xsimd::avx512f, Arch>) {
+      return _mm512_i64gather_pd(index, base, 8);
+    } else if constexpr (std::is_base_of_v<xsimd::avx2, Arch>) {
+      return _mm256_i64gather_pd(base, index, 8);
+    } else {
+      return Double::gather(base, index);
+    }
   }
 
-  static void from(const RawQueries& raw, std::size_t first, std::size_t count, Vector (&x)[4][2]) {
+  static Vector at(const double* x, const double* y, const double* z, const Index& index) {
+    return {gather(x, index), gather(y, index), gather(z, index)};
+  }
+
+  static void from(const RawQueries& raw, const Candidates& candidate, Vector (&x)[4][2]) {
     alignas(64) std::int64_t offset[L::size];
-    for (std::size_t j = 0; j < L::size; ++j)
-      offset[j] = static_cast<std::int64_t>((first + (j < count ? j : count - 1)) * 24);
+    for (std::size_t j = 0; j < L::size; ++j) offset[j] = candidate[j] * 24;
     const Index index = Index::load_aligned(offset);
     const double* data = raw.queries[0].points[0].data();
     for (int k = 1; k <= 4; ++k)
@@ -80,10 +98,10 @@ struct Gather {
   }
 
   template <class MeshSource>
-  static void from(const MeshSource& mesh, std::size_t first, std::size_t count, Vector (&x)[4][2]) {
+  static void from(const MeshSource& mesh, const Candidates& candidate, Vector (&x)[4][2]) {
     alignas(64) std::int64_t ids[4][L::size];
     for (std::size_t j = 0; j < L::size; ++j) {
-      const auto vertices = vertex_ids(mesh, first + (j < count ? j : count - 1));
+      const auto vertices = vertex_ids(mesh, static_cast<std::size_t>(candidate[j]));
       for (int k = 0; k < 4; ++k) ids[k][j] = vertices[k];
     }
     const MeshPositions& p = mesh.positions;
@@ -94,6 +112,17 @@ struct Gather {
     }
   }
 };
+
+// op over all n values as a balanced tree: a chain of n - 1 dependent
+// operations would be the kernel's critical path. Overwrites `values`.
+template <class T, std::size_t n, class Op>
+T pairwise(T (&values)[n], Op op) {
+  for (std::size_t width = n; width > 1; width = (width + 1) / 2) {
+    for (std::size_t i = 0; i < width / 2; ++i) values[i] = op(values[2 * i], values[2 * i + 1]);
+    if (width % 2 == 1) values[width / 2] = values[width - 1];
+  }
+  return values[0];
+}
 
 // Bit k set where lane k of the mask is true.
 template <class Arch>
@@ -107,34 +136,34 @@ std::uint32_t lane_bits(const xsimd::batch_bool<double, Arch>& mask) {
   }
 }
 
-// Writes base + k for every set bit k of `keep`, in order; returns how many.
+// Writes values[k] for every set bit k of `keep` (k < 8), in order; returns
+// how many.
 template <class Arch>
-std::size_t compress_indices(std::uint32_t keep, std::uint32_t base, std::uint32_t* out) {
+std::size_t compress(std::uint32_t keep, const std::uint32_t* values, std::uint32_t* out) {
   if constexpr (std::is_base_of_v<xsimd::avx512f, Arch>) {
     // A compress-store: no branch per survivor.
-    const __m256i indices = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(base)),
-                                             _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
-    _mm256_mask_compressstoreu_epi32(out, static_cast<__mmask8>(keep), indices);
+    const __m256i loaded = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(values));
+    _mm256_mask_compressstoreu_epi32(out, static_cast<__mmask8>(keep), loaded);
     return static_cast<std::size_t>(__builtin_popcount(keep));
   } else {
+    std::uint32_t loaded[8];
+    std::copy(values, values + 8, loaded);
     std::size_t n = 0;
-    for (; keep != 0; keep &= keep - 1) out[n++] = base + static_cast<std::uint32_t>(__builtin_ctz(keep));
+    for (; keep != 0; keep &= keep - 1) out[n++] = loaded[__builtin_ctz(keep)];
     return n;
   }
 }
 
-// Which lanes each filter culls: bit k set when lane k is certainly (or,
-// uncertified, plainly) free of contact.
-struct LaneCulls {
-  std::uint32_t sign = 0;
-  std::uint32_t separation = 0;
-};
+enum class LaneFilter { sign, separation };
 
-// The filters for `count` (<= lane count) queries whose 24 coordinates per
-// lane the source gathers. Lanes past count are never culled.
+// One filter over the candidates of `candidate`, `count` (<= lane count) of
+// them in use: bit k set when lane k is certainly (or, uncertified, plainly)
+// free of contact. Lanes past count are never culled.
 template <class Arch, class Source>
-[[gnu::flatten]] LaneCulls filter_lanes(const Source& source, std::size_t first, std::size_t count,
-                       const reference::FilterSettings& settings) {
+[[gnu::flatten]] std::uint32_t culled_lanes(const Source& source,
+                                            const typename Gather<Arch>::Candidates& candidate,
+                                            std::size_t count, const reference::FilterSettings& settings,
+                                            LaneFilter filter) {
   const bool certified = settings.certified;
   using L = Lanes<Arch>;
   using Double = typename L::Double;
@@ -143,39 +172,38 @@ template <class Arch, class Source>
 
   // x[k][tau]: DESIGN.md's x_{k+1} at t = tau, gathered.
   Vector x[4][2];
-  Gather<Arch>::from(source, first, count, x);
+  Gather<Arch>::from(source, candidate, x);
 
   // Non-finite input: x - x is NaN.
-  Double finite_check(0.0);
-  Double largest(0.0);
-  for (auto& point : x)
-    for (Vector& p : point)
-      for (Double* c : {&p.x, &p.y, &p.z}) {
-        finite_check = finite_check + (*c - *c);
-        largest = xsimd::max(largest, xsimd::abs(*c));
-      }
-  const Mask finite = finite_check == Double(0.0);
+  Double nan_probe[24], magnitude[24];
+  for (int j = 0; j < 8; ++j) {
+    const Vector& p = (&x[0][0])[j];
+    const Double coordinates[3] = {p.x, p.y, p.z};
+    for (int c = 0; c < 3; ++c) {
+      nan_probe[3 * j + c] = coordinates[c] - coordinates[c];
+      magnitude[3 * j + c] = xsimd::abs(coordinates[c]);
+    }
+  }
+  const Double largest = pairwise(magnitude, [](Double a, Double b) { return xsimd::max(a, b); });
+  const Mask finite = pairwise(nan_probe, [](Double a, Double b) { return a + b; }) == Double(0.0);
   const Mask nonzero = largest > Double(0.0);
   const auto input_scale = L::inverse_power_of_two(xsimd::select(nonzero, largest, Double(1.0)));
 
+  input_scale.scale(&x[0][0], 8);
   Vector relative[3][2];
-  Double largest_difference(0.0);
-  for (int tau = 0; tau < 2; ++tau) {
-    const Vector origin{input_scale.apply(x[0][tau].x), input_scale.apply(x[0][tau].y),
-                        input_scale.apply(x[0][tau].z)};
+  Double difference_magnitude[18];
+  for (int tau = 0; tau < 2; ++tau)
     for (int i = 0; i < 3; ++i) {
-      const Vector& p = x[i + 1][tau];
-      Vector& d = relative[i][tau];
-      d = {input_scale.apply(p.x) - origin.x, input_scale.apply(p.y) - origin.y,
-           input_scale.apply(p.z) - origin.z};
-      largest_difference = xsimd::max(
-          largest_difference, xsimd::max(xsimd::abs(d.x), xsimd::max(xsimd::abs(d.y), xsimd::abs(d.z))));
+      const Vector d = x[i + 1][tau] - x[0][tau];
+      relative[i][tau] = d;
+      Double* m = difference_magnitude + 3 * (2 * i + tau);
+      m[0] = xsimd::abs(d.x), m[1] = xsimd::abs(d.y), m[2] = xsimd::abs(d.z);
     }
-  }
+  const Double largest_difference =
+      pairwise(difference_magnitude, [](Double a, Double b) { return xsimd::max(a, b); });
   const Mask distinct = largest_difference > Double(0.0);
   const auto scale = L::inverse_power_of_two(xsimd::select(distinct, largest_difference, Double(1.0)));
-  for (auto& pair : relative)
-    for (Vector& d : pair) d = {scale.apply(d.x), scale.apply(d.y), scale.apply(d.z)};
+  scale.scale(&relative[0][0], 6);
 
   // ScaledQuery::absolute_error: when the input normalisation scaled down
   // (largest >= 2) and the second scaled up, its underflow floor, magnified.
@@ -185,17 +213,14 @@ template <class Arch, class Source>
   const Mask evaluable = finite & distinct;
   const std::uint32_t lanes_in_use = (1u << count) - 1;
 
-  LaneCulls culls;
-  if (settings.sign) {
+  if (filter == LaneFilter::sign) {
     reference::BernsteinCubic<Double> cubic =
         reference::bernstein_cubic(relative[0][0], relative[0][1], relative[1][0],
                                    relative[1][1], relative[2][0], relative[2][1]);
     Double relative_error(0.0), floor(0.0), half_relative_error(0.0), half_floor(0.0);
     if (certified) {
-      reference::bernstein_magnitudes(
-          cubic, reference::absolute(relative[0][0]), reference::absolute(relative[0][1]),
-          reference::absolute(relative[1][0]), reference::absolute(relative[1][1]),
-          reference::absolute(relative[2][0]), reference::absolute(relative[2][1]));
+      reference::bernstein_magnitude_bounds(cubic, relative[0][0], relative[0][1], relative[1][0],
+                                            relative[1][1], relative[2][0], relative[2][1]);
       // reference::coefficient_error and half_coefficient_error, lane by lane.
       const reference::ErrorModel whole = reference::coefficient_error(0.0);
       const reference::ErrorModel half = reference::half_coefficient_error(whole);
@@ -206,35 +231,56 @@ template <class Arch, class Source>
     } else {
       for (Double& m : cubic.magnitude) m = Double(0.0);
     }
-    const Mask culled = reference::sign_filter_culls(cubic, relative_error, floor,
-                                                     half_relative_error, half_floor);
-    culls.sign = lane_bits<Arch>(culled & evaluable) & lanes_in_use;
+    const Mask culled = reference::sign_filter_culls(cubic, relative_error, floor, half_relative_error,
+                                                     half_floor, settings.subdivide);
+    return lane_bits<Arch>(culled & evaluable) & lanes_in_use;
   }
-  if (settings.separation) {
+  {
     // reference::separation_error, lane by lane.
     const reference::SeparationErrorModel error = reference::separation_error(0.0, certified);
     const Mask enabled = certified ? Mask(absolute_error <= Double(0x1p-900)) : Mask(true);
     const Mask culled = reference::separation_filter_culls(source.kind, relative,
                                                            Double(error.relative), Double(error.floor));
-    culls.separation = lane_bits<Arch>(culled & enabled & evaluable) & lanes_in_use;
+    return lane_bits<Arch>(culled & enabled & evaluable) & lanes_in_use;
   }
-  return culls;
 }
 
-// The filter over candidates [begin, end): see FilterFunction.
+// The filters over candidates [begin, end): see FilterFunction. The sign
+// filter runs over all of them and compacts its survivors; the separation
+// filter then runs over those alone, in full lanes, and compacts them again.
 template <class Arch, class Source>
 std::size_t filter_range(const Source& source, std::size_t begin, std::size_t end,
                          const reference::FilterSettings& settings, std::uint32_t* survivors,
                          FilterCounts& counts) {
   constexpr std::size_t lanes = Lanes<Arch>::size;
+  typename Gather<Arch>::Candidates candidate;
+  std::uint32_t offsets[8] = {};  // survivors' indices relative to begin, lane by lane
   std::size_t kept = 0;
   for (std::size_t first = begin; first < end; first += lanes) {
-    const std::size_t count = end - first < lanes ? end - first : lanes;
-    const LaneCulls culls = filter_lanes<Arch>(source, first, count, settings);
-    counts.sign += static_cast<std::size_t>(__builtin_popcount(culls.sign));
-    counts.separation += static_cast<std::size_t>(__builtin_popcount(culls.separation));
-    const std::uint32_t keep = ~(culls.sign | culls.separation) & ((1u << count) - 1);
-    kept += compress_indices<Arch>(keep, static_cast<std::uint32_t>(first - begin), survivors + kept);
+    const std::size_t count = std::min(end - first, lanes);
+    for (std::size_t j = 0; j < lanes; ++j) {
+      const std::size_t i = first + std::min(j, count - 1);  // spare lanes repeat the last
+      candidate[j] = static_cast<std::int64_t>(i);
+      offsets[j] = static_cast<std::uint32_t>(i - begin);
+    }
+    const std::uint32_t culled =
+        settings.sign ? culled_lanes<Arch>(source, candidate, count, settings, LaneFilter::sign) : 0;
+    counts.sign += static_cast<std::size_t>(__builtin_popcount(culled));
+    kept += compress<Arch>(~culled & ((1u << count) - 1), offsets, survivors + kept);
+  }
+  if (!settings.separation) return kept;
+  const std::size_t sign_survivors = kept;
+  kept = 0;
+  for (std::size_t first = 0; first < sign_survivors; first += lanes) {
+    const std::size_t count = std::min(sign_survivors - first, lanes);
+    for (std::size_t j = 0; j < lanes; ++j) {
+      offsets[j] = survivors[first + std::min(j, count - 1)];
+      candidate[j] = static_cast<std::int64_t>(begin + offsets[j]);
+    }
+    const std::uint32_t culled =
+        culled_lanes<Arch>(source, candidate, count, settings, LaneFilter::separation);
+    counts.separation += static_cast<std::size_t>(__builtin_popcount(culled));
+    kept += compress<Arch>(~culled & ((1u << count) - 1), offsets, survivors + kept);
   }
   return kept;
 }

@@ -20,6 +20,8 @@
 
 #include <gtest/gtest.h>
 
+#include "compare.hpp"
+#include "demo.hpp"
 #include "report_format.hpp"
 #include "run.hpp"
 
@@ -653,6 +655,160 @@ TEST(CliFormat, JsonLineWithoutTimeHasNoInfinity) {
   const std::string line = batchccd::cli::json_line(report);
   EXPECT_EQ(line.find("inf"), std::string::npos) << line;
   EXPECT_EQ(FlatJsonReader(line).object()->at("queries_per_second"), "0");
+}
+
+// ---- demo and report --------------------------------------------------------------
+
+// methods.csv as rows of named fields.
+std::vector<std::map<std::string, std::string>> read_csv(const fs::path& file) {
+  const std::vector<std::string> lines = lines_of(read_file(file));
+  std::vector<std::map<std::string, std::string>> rows;
+  if (lines.empty()) return rows;
+  const auto split = [](const std::string& line) {
+    std::vector<std::string> cells;
+    std::string cell;
+    bool quoted = false;
+    for (const char c : line) {
+      if (c == '"') {
+        quoted = !quoted;
+      } else if (c == ',' && !quoted) {
+        cells.push_back(cell);
+        cell.clear();
+      } else {
+        cell += c;
+      }
+    }
+    cells.push_back(cell);
+    return cells;
+  };
+  const std::vector<std::string> header = split(lines.front());
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const std::vector<std::string> cells = split(lines[i]);
+    EXPECT_EQ(cells.size(), header.size()) << lines[i];
+    std::map<std::string, std::string> row;
+    for (std::size_t c = 0; c < std::min(cells.size(), header.size()); ++c) row[header[c]] = cells[c];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+std::vector<std::string> method_names() {
+  std::vector<std::string> names;
+  for (const auto method : batchccd::cli::compared_methods())
+    names.emplace_back(batchccd::cli::name_of(method));
+  return names;
+}
+
+TEST(CliCompare, TallyCountsErrorsAgainstTruthAndToiAgainstTheReference) {
+  using batchccd::QueryResult;
+  batchccd::cli::MethodRun run;
+  run.results = {{true, 0.5}, {false}, {true, 0.25}, {true, 0.0}};
+  run.seconds = 2;
+  run.culled = 1;
+  const std::vector<bool> truth = {true, true, true, false};
+  const std::vector<QueryResult> reference = {{true, 0.5}, {true, 0.1}, {true, 0.3}, {false}};
+  batchccd::cli::MethodTally tally;
+  tally.add(run, truth, reference);
+  EXPECT_EQ(tally.candidates, 4);
+  EXPECT_EQ(tally.false_negatives, 1);
+  EXPECT_EQ(tally.false_positives, 1);
+  EXPECT_EQ(tally.toi_compared, 2);
+  EXPECT_DOUBLE_EQ(tally.toi_error_max, 0.05);
+  EXPECT_DOUBLE_EQ(tally.toi_error_mean(), 0.025);
+  EXPECT_DOUBLE_EQ(tally.candidates_per_second(), 2);
+  EXPECT_DOUBLE_EQ(tally.cull_ratio(), 0.25);
+  batchccd::cli::MethodTally twice = tally;
+  twice += tally;
+  EXPECT_EQ(twice.false_negatives, 2);
+  EXPECT_DOUBLE_EQ(twice.toi_error_max, 0.05);
+  EXPECT_DOUBLE_EQ(twice.toi_error_mean(), 0.025);
+  EXPECT_THROW(tally.add(run, {true}, reference), std::logic_error);
+}
+
+TEST_F(CliTest, ReportComparesEveryMethodAgainstTheFilesTruth) {
+  write_scene(path("data/scene"));
+  write_file(path("data/vf/q.csv"), vertex_face_hit_and_miss);
+  write_file(path("data/ee/q.csv"), edge_edge_hit_and_miss);
+  const CliRun result = run_cli({"report", "--threads", "2", "--out", "out", "data"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  for (const std::string& method : method_names())
+    EXPECT_NE(result.out.find("\n" + method + " "), std::string::npos) << method << "\n" << result.out;
+  const auto rows = read_csv(path("out/methods.csv"));
+  ASSERT_EQ(rows.size(), 4 * method_names().size());  // 3 inputs and the totals, per method
+  for (const auto& row : rows) {
+    // The inputs hold clean hits and clear misses: the certified modes get all right.
+    if (row.at("method") == "exact" || row.at("method") == "conservative") {
+      EXPECT_EQ(row.at("false_negatives"), "0") << row.at("input");
+      EXPECT_EQ(row.at("false_positives"), "0") << row.at("input");
+    }
+    if (row.at("input") == "total") {
+      EXPECT_EQ(row.at("candidates"), "8");
+    }
+  }
+  const std::string svg = read_file(path("out/plot.svg"));
+  EXPECT_NE(svg.find("run time"), std::string::npos);
+  for (const std::string& method : method_names()) EXPECT_NE(svg.find(">" + method + "<"), std::string::npos);
+}
+
+TEST_F(CliTest, ReportGoesOnPastABadInputAndSaysSo) {
+  write_file(path("vf/q.csv"), vertex_face_hit_and_miss);
+  write_file(path("vf/bad.csv"), "1,1,2\n");
+  const CliRun result = run_cli({"report", "vf/bad.csv", "missing", "vf/q.csv"});
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.err.find("bad.csv:1"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("missing"), std::string::npos) << result.err;
+  EXPECT_NE(result.out.find("1 inputs, 2 candidates"), std::string::npos) << result.out;
+}
+
+TEST_F(CliTest, DemoAndReportCommandLines) {
+  for (const auto& arguments : std::vector<std::vector<std::string>>{
+           {"demo", "--scene", "sphere"}, {"demo", "--resolution", "0"}, {"demo", "extra"},
+           {"demo", "--methods-only=yes"}, {"report"}, {"report", "--threads", "x", "a"},
+           {"report", "--bogus", "a"}}) {
+    const CliRun result = run_cli(arguments);
+    EXPECT_EQ(result.exit_code, 2) << arguments[1];
+    EXPECT_NE(result.err.find("usage: batchccd " + arguments[0]), std::string::npos) << result.err;
+  }
+  for (const std::string command : {"demo", "report"}) {
+    const CliRun help = run_cli({command, "--help"});
+    EXPECT_EQ(help.exit_code, 0);
+    EXPECT_NE(help.out.find("usage: batchccd " + command), std::string::npos);
+    EXPECT_NE(help.out.find("--threads"), std::string::npos);
+  }
+}
+
+// A small cloth: every method runs, exact mode is the truth, and the
+// certified mode misses nothing.
+TEST_F(CliTest, DemoPrintsTheTableAndWritesReportCsvAndPlot) {
+  const CliRun result = run_cli({"demo", "--resolution", "24", "--threads", "2", "--out", "out"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_TRUE(result.err.empty()) << "progress must stay off a non-terminal: " << result.err;
+  for (const char* section : {"candidates/s", "What a call pays for", "Stiff and extreme"})
+    EXPECT_NE(result.out.find(section), std::string::npos) << section;
+  EXPECT_EQ(read_file(path("out/report.txt")) + "wrote out/report.txt, out/methods.csv, out/plot.svg\n",
+            result.out);
+  const auto rows = read_csv(path("out/methods.csv"));
+  ASSERT_EQ(rows.size(), method_names().size());
+  std::map<std::string, std::map<std::string, std::string>> by_method;
+  for (const auto& row : rows) by_method[row.at("method")] = row;
+  EXPECT_EQ(by_method.at("exact").at("false_negatives"), "0");
+  EXPECT_EQ(by_method.at("exact").at("false_positives"), "0");
+  EXPECT_EQ(by_method.at("exact").at("toi_error_max"), "0");
+  EXPECT_EQ(by_method.at("conservative").at("false_negatives"), "0");
+  EXPECT_GT(std::stod(by_method.at("conservative").at("cull_ratio")), 0.9);
+  EXPECT_EQ(by_method.at("cubic").at("culled"), "0");
+  // The scene has contacts: TOIs were compared.
+  EXPECT_GT(std::stol(by_method.at("conservative").at("toi_compared")), 0);
+  EXPECT_NE(read_file(path("out/plot.svg")).find("</svg>"), std::string::npos);
+}
+
+TEST_F(CliTest, DemoIntoAnUnwritableDirectoryIsAnErrorAfterTheReport) {
+  write_file(path("blocker"), "a file where the directory should go");
+  const CliRun result =
+      run_cli({"demo", "--scene", "rigid", "--resolution", "2", "--methods-only", "--out", "blocker/out"});
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.out.find("candidates/s"), std::string::npos);  // the report came first
+  EXPECT_NE(result.err.find("blocker"), std::string::npos) << result.err;
 }
 
 // ---- the shared data set ----------------------------------------------------------

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <limits>
 #include <random>
+#include <tuple>
 #include <vector>
 
 #include "batchccd/batchccd.hpp"
@@ -40,18 +41,22 @@ std::vector<std::uint32_t> survivors(simd::FilterFunction<Source> filter, const 
   return kept;
 }
 
-// Certified and plain, each filter alone and both.
+// Certified and plain, each filter alone and both, the sign test with and
+// without its V = 2 step.
 std::vector<reference::FilterSettings> all_settings() {
   std::vector<reference::FilterSettings> settings;
   for (bool certified : {true, false})
-    for (auto [sign, separation] : {std::pair{true, false}, {false, true}, {true, true}})
-      settings.push_back({certified, sign, separation});
+    for (auto [sign, subdivide, separation] :
+         {std::tuple{true, true, false}, {true, false, false}, {false, true, true},
+          {true, true, true}, {true, false, true}})
+      settings.push_back({.certified = certified, .sign = sign, .subdivide = subdivide,
+                          .separation = separation});
   return settings;
 }
 
 std::string describe(const reference::FilterSettings& s) {
-  return std::string(s.certified ? "certified" : "plain") + (s.sign ? " sign" : "") +
-         (s.separation ? " separation" : "");
+  return std::string(s.certified ? "certified" : "plain") +
+         (s.sign ? (s.subdivide ? " sign" : " sign-dnf") : "") + (s.separation ? " separation" : "");
 }
 
 // Queries that stress every step of the lane arithmetic.

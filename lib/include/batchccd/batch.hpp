@@ -18,7 +18,7 @@ struct Counters {
   std::int64_t candidates = 0;  // queries evaluated
   std::int64_t culled = 0;      // removed by the lane filters
   std::int64_t culled_by_sign = 0;        // of those, by the sign filter
-  std::int64_t culled_by_separation = 0;  // by the separation filter (both may cull one)
+  std::int64_t culled_by_separation = 0;  // by the separation filter (it sees what the sign filter kept)
   std::int64_t solved = 0;      // sent to the solver (candidates - culled)
   std::int64_t hits = 0;
   std::int64_t undecided = 0;   // solver ran out of iterations: reported as hits

@@ -74,7 +74,12 @@ struct Options {
 
   // The lane filters (DESIGN.md §2), each certified in conservative and
   // exact modes; switch one off to measure the other. Mode cubic runs none.
+  // The sign filter runs first, the separation filter on what it keeps.
   bool sign_filter = true;        // Bernstein sign test on the coplanarity cubic
+  // The sign test's V = 2 step (subdivision at t = 1/2 when the four signs
+  // are mixed); false leaves the four signs alone, the DNF-style filter of
+  // Tang et al. 2010, for comparison.
+  bool sign_filter_subdivision = true;
   bool separation_filter = true;  // distance at t0 against the largest displacement
 
   Isa isa = Isa::automatic;

@@ -15,6 +15,22 @@ struct Vector3 {
   T x, y, z;
 };
 
+// select for scalar lanes; xsimd's select serves batches (found by ADL).
+inline double select(bool condition, double if_true, double if_false) {
+  return condition ? if_true : if_false;
+}
+
+template <class T>
+T max_of(T a, T b) {
+  return select(a > b, a, b);
+}
+
+template <class T>
+T largest_component(const Vector3<T>& v) {
+  using std::abs;
+  return max_of(max_of(abs(v.x), abs(v.y)), abs(v.z));
+}
+
 template <class T>
 Vector3<T> operator-(const Vector3<T>& a, const Vector3<T>& b) {
   return {a.x - b.x, a.y - b.y, a.z - b.z};
@@ -83,6 +99,24 @@ void bernstein_magnitudes(BernsteinCubic<T>& cubic, const Vector3<T>& a0, const 
   cubic.magnitude[1] = dot(a1b0, c0) + dot(a0b1, c0) + dot(a0b0, c1);
   cubic.magnitude[2] = dot(a1b1, c0) + dot(a1b0, c1) + dot(a0b1, c1);
   cubic.magnitude[3] = dot(a1b1, c1);
+}
+
+// Upper bounds of the magnitudes that cost a third of bernstein_magnitudes,
+// for the filter: each of a triple product's 6 terms is at most the product
+// of its factors' largest components. (Rounding may leave a bound up to 5 u
+// below that product, which the error models' spare room covers.)
+template <class T>
+void bernstein_magnitude_bounds(BernsteinCubic<T>& cubic, const Vector3<T>& a0, const Vector3<T>& a1,
+                                const Vector3<T>& b0, const Vector3<T>& b1, const Vector3<T>& c0,
+                                const Vector3<T>& c1) {
+  const T na0 = largest_component(a0), na1 = largest_component(a1);
+  const T nb0 = largest_component(b0), nb1 = largest_component(b1);
+  const T nc0 = largest_component(c0), nc1 = largest_component(c1);
+  const T a0b0 = na0 * nb0, a1b0 = na1 * nb0, a0b1 = na0 * nb1, a1b1 = na1 * nb1;
+  cubic.magnitude[0] = T(6) * (a0b0 * nc0);
+  cubic.magnitude[1] = T(6) * (a1b0 * nc0 + a0b1 * nc0 + a0b0 * nc1);
+  cubic.magnitude[2] = T(6) * (a1b1 * nc0 + a1b0 * nc1 + a0b1 * nc1);
+  cubic.magnitude[3] = T(6) * (a1b1 * nc1);
 }
 
 // Bernstein coefficients of the two halves [0, 1/2] and [1/2, 1] (de

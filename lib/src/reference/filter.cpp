@@ -12,22 +12,21 @@ Vector3<double> as_vector(const Vec3& v) { return {v[0], v[1], v[2]}; }
 
 }  // namespace
 
-bool sign_filter_culls(const ScaledQuery& query, bool certified) {
+bool sign_filter_culls(const ScaledQuery& query, bool certified, bool subdivide) {
   const auto& r = query.relative;
   BernsteinCubic<double> cubic =
       bernstein_cubic(as_vector(r[0][0]), as_vector(r[0][1]), as_vector(r[1][0]),
                       as_vector(r[1][1]), as_vector(r[2][0]), as_vector(r[2][1]));
   ErrorModel whole, half;
   if (certified) {
-    auto magnitude = [](const Vec3& v) { return as_vector(v.cwiseAbs()); };
-    bernstein_magnitudes(cubic, magnitude(r[0][0]), magnitude(r[0][1]), magnitude(r[1][0]),
-                         magnitude(r[1][1]), magnitude(r[2][0]), magnitude(r[2][1]));
+    bernstein_magnitude_bounds(cubic, as_vector(r[0][0]), as_vector(r[0][1]), as_vector(r[1][0]),
+                               as_vector(r[1][1]), as_vector(r[2][0]), as_vector(r[2][1]));
     whole = coefficient_error(query.absolute_error);
     half = half_coefficient_error(whole);
   } else {
     for (double& magnitude : cubic.magnitude) magnitude = 0;
   }
-  return sign_filter_culls(cubic, whole.relative, whole.floor, half.relative, half.floor);
+  return sign_filter_culls(cubic, whole.relative, whole.floor, half.relative, half.floor, subdivide);
 }
 
 SeparationErrorModel separation_error(double absolute_error, bool certified) {
@@ -40,8 +39,8 @@ SeparationErrorModel separation_error(double absolute_error, bool certified) {
 
 FilterVerdict run_filters(Kind kind, const ScaledQuery& query, const FilterSettings& settings) {
   FilterVerdict verdict;
-  if (settings.sign) verdict.sign = sign_filter_culls(query, settings.certified);
-  if (settings.separation) {
+  if (settings.sign) verdict.sign = sign_filter_culls(query, settings.certified, settings.subdivide);
+  if (settings.separation && !verdict.sign) {
     const SeparationErrorModel error = separation_error(query.absolute_error, settings.certified);
     Vector3<double> relative[3][2];
     for (int i = 0; i < 3; ++i)

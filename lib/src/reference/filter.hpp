@@ -1,5 +1,6 @@
 #pragma once
 
+#include "batchccd/options.hpp"
 #include "reference/scaled_query.hpp"
 
 namespace batchccd::reference {
@@ -8,10 +9,18 @@ namespace batchccd::reference {
 struct FilterSettings {
   bool certified = true;   // cull only when error bounds prove it; else plain signs (fast mode)
   bool sign = true;        // the Bernstein sign test on the coplanarity cubic
+  bool subdivide = true;   // its V = 2 step (false: DNF-style, the four signs only)
   bool separation = true;  // distance at t = 0 against the largest displacement
 };
 
-// What each filter said of one query (both may cull it).
+// The filters a call's options ask for (mode cubic runs none: callers skip them).
+inline FilterSettings filter_settings(const Options& options) {
+  return {options.mode != Mode::fast, options.sign_filter, options.sign_filter_subdivision,
+          options.separation_filter};
+}
+
+// What each filter said of one query. The sign filter runs first; the
+// separation filter only sees what it keeps (at most one of the two culls).
 struct FilterVerdict {
   bool sign = false;
   bool separation = false;
@@ -22,7 +31,7 @@ struct FilterVerdict {
 FilterVerdict run_filters(Kind kind, const ScaledQuery& query, const FilterSettings& settings);
 
 // The sign filter alone.
-bool sign_filter_culls(const ScaledQuery& query, bool certified);
+bool sign_filter_culls(const ScaledQuery& query, bool certified, bool subdivide = true);
 
 // The separation filter's error model: relative bound and absolute floor,
 // and whether it applies at all (not when underflow was magnified too much to bound).

@@ -60,9 +60,7 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, bool 
     }
     return evaluation;
   }
-  const FilterSettings filters{options.mode != Mode::fast, options.sign_filter,
-                               options.separation_filter};
-  if (!filtered && run_filters(kind, scaled, filters).culled()) {
+  if (!filtered && run_filters(kind, scaled, filter_settings(options)).culled()) {
     evaluation.culled = true;
     return evaluation;
   }

@@ -23,11 +23,6 @@
 // parts are orthogonal, so their squares add.
 namespace batchccd::reference {
 
-// select for scalar lanes; xsimd's select serves batches (found by ADL).
-inline double select(bool condition, double if_true, double if_false) {
-  return condition ? if_true : if_false;
-}
-
 template <class T>
 struct Bounded {
   T value;
@@ -66,11 +61,6 @@ T squared_norm_upper_bound(const Vector3<T>& w, const Vector3<T>& magnitude, T r
   const T y = abs(w.y) + (relative * magnitude.y + floor);
   const T z = abs(w.z) + (relative * magnitude.z + floor);
   return (x * x + y * y + z * z) * T(SeparationErrors::grow);
-}
-
-template <class T>
-T max_of(T a, T b) {
-  return select(a > b, a, b);
 }
 
 // Squared gap between the intervals spanned by two pairs of projections

@@ -21,10 +21,12 @@ auto certainly_root_free(const T (&coefficient)[4], const T (&magnitude)[4], T r
 }
 
 // V = 0 on [0, 1], or V = 0 on both halves after one subdivision (which is
-// what settles V = 2 without roots).
+// what settles V = 2 without roots). Without `subdivide`, the four signs
+// alone: the DNF-style filter of Tang et al. 2010, kept for comparison.
 template <class T>
 auto sign_filter_culls(const BernsteinCubic<T>& cubic, T relative, T floor, T half_relative,
-                       T half_floor) {
+                       T half_floor, bool subdivide = true) {
+  if (!subdivide) return certainly_root_free(cubic.coefficient, cubic.magnitude, relative, floor);
   T left[4], right[4], left_magnitude[4], right_magnitude[4];
   split_at_half(cubic.coefficient, left, right);
   split_at_half(cubic.magnitude, left_magnitude, right_magnitude);

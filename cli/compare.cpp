@@ -1,0 +1,155 @@
+#include "compare.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "peers/fcl_peer.hpp"
+
+namespace batchccd::cli {
+namespace {
+
+struct MethodEntry {
+  Method method;
+  std::string_view name;
+  std::string_view description;
+};
+
+constexpr MethodEntry kMethods[] = {
+    {Method::exact, "exact", "decisions of exact arithmetic (certified path, GMP for the uncertain)"},
+    {Method::conservative, "conservative", "certified floating point, both lane filters (default)"},
+    {Method::fast, "fast", "the same filters and solver in plain double arithmetic"},
+    {Method::cubic, "cubic", "unfiltered cubic solver, roots in double (the baseline)"},
+    {Method::dnf, "dnf", "conservative with a DNF-style filter: four signs, no V = 2 step"},
+    {Method::fcl, "fcl", "FCL 0.7 fcl::detail::Intersect (interval Newton), an outside peer"},
+};
+
+const MethodEntry& entry(Method method) {
+  for (const MethodEntry& e : kMethods)
+    if (e.method == method) return e;
+  throw std::invalid_argument("unknown method");
+}
+
+Options engine_options(Method method, int threads) {
+  Options options;
+  options.threads = threads;
+  switch (method) {
+    case Method::exact: options.mode = Mode::exact; break;
+    case Method::conservative: options.mode = Mode::conservative; break;
+    case Method::fast: options.mode = Mode::fast; break;
+    case Method::cubic: options.mode = Mode::cubic; break;
+    case Method::dnf:
+      options.mode = Mode::conservative;
+      options.sign_filter_subdivision = false;
+      options.separation_filter = false;
+      break;
+    case Method::fcl: throw std::invalid_argument("fcl is not one of batchccd's modes");
+  }
+  return options;
+}
+
+// The peer on every candidate, parallel like the engine (FCL is thread-safe
+// here: Intersect's functions are static and keep no state).
+std::vector<QueryResult> run_fcl(const Workload& workload, int threads) {
+  std::vector<QueryResult> results(workload.size());
+  auto work = [&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, workload.size(), 2048),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t i = range.begin(); i < range.end(); ++i) {
+                          const peers::PeerResult r =
+                              peers::fcl_ccd(workload.kind_at(i), workload.query_at(i));
+                          results[i] = {r.hit, r.toi, Status::ok};
+                        }
+                      });
+  };
+  if (threads > 0) {
+    tbb::task_arena arena(threads);
+    arena.execute(work);
+  } else {
+    work();
+  }
+  return results;
+}
+
+}  // namespace
+
+std::vector<Method> compared_methods() {
+  std::vector<Method> methods;
+  for (const MethodEntry& e : kMethods)
+    if (e.method != Method::fcl || peers::fcl_available()) methods.push_back(e.method);
+  return methods;
+}
+
+std::string_view name_of(Method method) { return entry(method).name; }
+std::string_view description_of(Method method) { return entry(method).description; }
+
+MethodRun run_method(Method method, const Workload& workload, int threads) {
+  MethodRun run;
+  const auto start = std::chrono::steady_clock::now();
+  if (method == Method::fcl) {
+    run.results = run_fcl(workload, threads);
+  } else {
+    BatchResult batch = workload.run(engine_options(method, threads));
+    run.results = std::move(batch.results);
+    run.culled = batch.counters.culled;
+  }
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return run;
+}
+
+std::vector<bool> decisions(const MethodRun& run) {
+  std::vector<bool> hits(run.results.size());
+  for (std::size_t i = 0; i < hits.size(); ++i) hits[i] = run.results[i].hit;
+  return hits;
+}
+
+void MethodTally::add(const MethodRun& run, const std::vector<bool>& truth,
+                      const std::vector<QueryResult>& reference) {
+  if (run.results.size() != truth.size() || reference.size() != truth.size())
+    throw std::logic_error("a method, the truth and the reference differ in length");
+  seconds += run.seconds;
+  candidates += static_cast<std::int64_t>(truth.size());
+  culled += run.culled;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    const QueryResult& r = run.results[i];
+    false_negatives += truth[i] && !r.hit;
+    false_positives += !truth[i] && r.hit;
+    if (r.hit && reference[i].hit && std::isfinite(reference[i].toi)) {
+      const double error = std::abs(r.toi - reference[i].toi);
+      ++toi_compared;
+      toi_error_max = std::max(toi_error_max, error);
+      toi_error_sum += error;
+    }
+  }
+}
+
+MethodTally& MethodTally::operator+=(const MethodTally& other) {
+  seconds += other.seconds;
+  candidates += other.candidates;
+  culled += other.culled;
+  false_negatives += other.false_negatives;
+  false_positives += other.false_positives;
+  toi_compared += other.toi_compared;
+  toi_error_max = std::max(toi_error_max, other.toi_error_max);
+  toi_error_sum += other.toi_error_sum;
+  return *this;
+}
+
+double MethodTally::candidates_per_second() const {
+  return seconds > 0 ? static_cast<double>(candidates) / seconds : 0.0;
+}
+
+double MethodTally::cull_ratio() const {
+  return candidates > 0 ? static_cast<double>(culled) / static_cast<double>(candidates) : 0.0;
+}
+
+double MethodTally::toi_error_mean() const {
+  return toi_compared > 0 ? toi_error_sum / static_cast<double>(toi_compared) : 0.0;
+}
+
+}  // namespace batchccd::cli

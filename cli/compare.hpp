@@ -1,0 +1,66 @@
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "batchccd/batchccd.hpp"
+#include "workload.hpp"
+
+// The methods the comparison commands (demo, report) set side by side, and
+// what each gets wrong against ground truth, summed over workloads.
+namespace batchccd::cli {
+
+enum class Method {
+  exact,         // Mode::exact
+  conservative,  // Mode::conservative, both lane filters
+  fast,          // Mode::fast
+  cubic,         // Mode::cubic: the unfiltered cubic solver, the baseline
+  dnf,           // conservative with the DNF-style filter: four signs, no V = 2 step, no separation filter
+  fcl,           // FCL 0.7's fcl::detail::Intersect, an outside peer
+};
+
+// In report order; fcl only when this build has FCL.
+std::vector<Method> compared_methods();
+std::string_view name_of(Method method);
+std::string_view description_of(Method method);
+
+// One method's answers on one workload, and the wall-clock time of the call.
+struct MethodRun {
+  std::vector<QueryResult> results;  // one per candidate
+  double seconds = 0;
+  std::int64_t culled = 0;  // candidates the lane filters removed (0 without filters)
+};
+
+// Runs `method` on every candidate with `threads` workers (0: all).
+MethodRun run_method(Method method, const Workload& workload, int threads);
+
+// A method's figures, summed over the workloads added.
+struct MethodTally {
+  Method method = Method::conservative;
+  double seconds = 0;
+  std::int64_t candidates = 0;
+  std::int64_t culled = 0;
+  std::int64_t false_negatives = 0;
+  std::int64_t false_positives = 0;
+  // TOI error |toi - reference toi| over the candidates where the method and
+  // the reference (exact mode) both report a hit.
+  std::int64_t toi_compared = 0;
+  double toi_error_max = 0;
+  double toi_error_sum = 0;
+
+  // `truth`: the true decision of each candidate; `reference`: exact mode's
+  // results, whose TOI lies within 1e-12 before the first contact.
+  void add(const MethodRun& run, const std::vector<bool>& truth,
+           const std::vector<QueryResult>& reference);
+  MethodTally& operator+=(const MethodTally& other);  // the same method's
+  double candidates_per_second() const;
+  double cull_ratio() const;
+  double toi_error_mean() const;
+};
+
+// Decisions of a run, as ground truth (exact mode's, for generated scenes).
+std::vector<bool> decisions(const MethodRun& run);
+
+}  // namespace batchccd::cli

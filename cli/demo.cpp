@@ -1,0 +1,299 @@
+#include "demo.hpp"
+
+#include <chrono>
+#include <functional>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "broad_phase.hpp"
+#include "compare.hpp"
+#include "comparison_format.hpp"
+#include "extreme_suite.hpp"
+#include "names.hpp"
+#include "scenes.hpp"
+#include "text_output.hpp"
+#include "workload.hpp"
+
+namespace batchccd::cli {
+namespace {
+
+// The demo's default sizes, chosen so that the whole demo takes about a
+// minute on 2 cores: the cloth's steps from just before its first contact
+// (step 73) through the fold, about 4 M candidates each.
+constexpr int kClothResolution = 128;
+constexpr int kClothSteps = 100;
+constexpr int kClothFirstFrame = 68;
+constexpr int kClothFrames = 12;
+constexpr int kRigidResolution = 12;
+
+// One line that rewrites itself on a terminal; nothing elsewhere.
+class Progress {
+ public:
+  explicit Progress(std::ostream* terminal) : terminal_(terminal) {}
+  ~Progress() { clear(); }
+  void show(const std::string& text) {
+    if (terminal_) *terminal_ << "\r\033[K" << text << std::flush;
+  }
+  void clear() {
+    if (terminal_) *terminal_ << "\r\033[K" << std::flush;
+  }
+
+ private:
+  std::ostream* terminal_;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Every method on one workload: exact mode first, as the TOI reference and,
+// without ground truth in the workload, as the truth.
+void compare_on(const Workload& workload, int threads, std::vector<MethodTally>& tallies,
+                Progress& progress, const std::string& where) {
+  progress.show(where + ": exact");
+  const MethodRun exact = run_method(Method::exact, workload, threads);
+  const std::vector<bool> truth = workload.truth ? *workload.truth : decisions(exact);
+  for (MethodTally& tally : tallies) {
+    if (tally.method == Method::exact) {
+      tally.add(exact, truth, exact.results);
+      continue;
+    }
+    progress.show(where + ": " + std::string(name_of(tally.method)));
+    tally.add(run_method(tally.method, workload, threads), truth, exact.results);
+  }
+}
+
+std::vector<MethodTally> empty_tallies() {
+  std::vector<MethodTally> tallies;
+  for (const Method method : compared_methods()) tallies.push_back({.method = method});
+  return tallies;
+}
+
+// ---- what a call pays for ---------------------------------------------------
+
+struct CostVariant {
+  std::string_view name;
+  std::function<void(Options&)> ask;
+  double seconds = 0;
+};
+
+std::vector<CostVariant> cost_variants() {
+  return {
+      {"everything: TOI, vf + ee, per-candidate results", [](Options&) {}},
+      {"hit/no-hit only (need_toi = false)", [](Options& o) { o.need_toi = false; }},
+      {"vf only", [](Options& o) { o.edge_edge = false; }},
+      {"ee only", [](Options& o) { o.vertex_face = false; }},
+      {"earliest TOI only (per_candidate_results = false)",
+       [](Options& o) { o.per_candidate_results = false; }},
+  };
+}
+
+void time_costs(const Workload& workload, int threads, std::vector<CostVariant>& variants,
+                Progress& progress, const std::string& where) {
+  for (CostVariant& variant : variants) {
+    progress.show(where + ": " + std::string(variant.name));
+    Options options;
+    options.threads = threads;
+    variant.ask(options);
+    const auto start = std::chrono::steady_clock::now();
+    workload.run(options);
+    variant.seconds += seconds_since(start);
+  }
+}
+
+void print_costs(std::ostream& out, const std::vector<CostVariant>& variants) {
+  constexpr TableColumn columns[] = {{"asked for", false}, {"seconds", true}, {"of everything", true}};
+  const double everything = variants.front().seconds;
+  std::vector<std::vector<std::string>> rows;
+  for (const CostVariant& v : variants)
+    rows.push_back({std::string(v.name), fixed(v.seconds, 3),
+                    everything > 0 ? fixed(100 * v.seconds / everything, 0) + " %" : "-"});
+  print_aligned(out, columns, rows);
+}
+
+// ---- scenes -------------------------------------------------------------------
+
+Workload workload_of(scenes::MovingMesh mesh) {
+  MeshWorkload source;
+  source.positions_t0 = std::move(mesh.positions_t0);
+  source.positions_t1 = std::move(mesh.positions_t1);
+  source.faces = std::move(mesh.faces);
+  source.candidates = scenes::swept_box_candidates(source.view(), scenes::mean_edge_length(source.view()));
+  return {mesh.name, std::move(source), std::nullopt};
+}
+
+// The scene's steps, each made when it is needed (one step's candidates in
+// memory at a time).
+struct SceneSteps {
+  std::string description;
+  std::vector<std::function<scenes::MovingMesh()>> steps;
+};
+
+SceneSteps scene_steps(const DemoSettings& settings) {
+  SceneSteps scene;
+  if (settings.scene == BuiltinScene::rigid) {
+    const int resolution = settings.resolution > 0 ? settings.resolution : kRigidResolution;
+    scene.description = "rigid bodies (thin plates and rods moving far within one step), resolution " +
+                        std::to_string(resolution);
+    scene.steps.push_back([resolution] { return scenes::rigid_scene({.resolution = resolution}); });
+    return scene;
+  }
+  const int resolution = settings.resolution > 0 ? settings.resolution : kClothResolution;
+  scene.description = "cloth (a sheet that drapes, folds and twists onto itself), " +
+                      std::to_string(resolution) + " x " + std::to_string(resolution) +
+                      " vertices, steps " + std::to_string(kClothFirstFrame) + "-" +
+                      std::to_string(kClothFirstFrame + kClothFrames - 1) + " of " +
+                      std::to_string(kClothSteps);
+  for (int frame = kClothFirstFrame; frame < kClothFirstFrame + kClothFrames; ++frame)
+    scene.steps.push_back([resolution, frame] {
+      return scenes::cloth_scene({.resolution = resolution, .frames = kClothSteps, .frame = frame});
+    });
+  return scene;
+}
+
+std::string millions(std::int64_t count) { return fixed(static_cast<double>(count) / 1e6, 2) + " M"; }
+
+// Prints a finished section and keeps it for report.txt.
+class Report {
+ public:
+  explicit Report(std::ostream& out) : out_(out) {}
+  void add(const std::string& section) {
+    out_ << section << std::flush;
+    text_ += section;
+  }
+  const std::string& text() const { return text_; }
+
+ private:
+  std::ostream& out_;
+  std::string text_;
+};
+
+void write_outputs(const std::filesystem::path& directory, const std::string& title,
+                   const std::vector<std::pair<std::string, MethodTally>>& csv_rows,
+                   const std::vector<MethodTally>& totals, const std::string* text,
+                   std::ostream& out) {
+  std::filesystem::create_directories(directory);
+  if (text) write_file_atomically(directory / "report.txt", [&](std::ostream& o) { o << *text; });
+  write_file_atomically(directory / "methods.csv",
+                        [&](std::ostream& o) { write_comparison_csv(o, csv_rows); });
+  write_file_atomically(directory / "plot.svg",
+                        [&](std::ostream& o) { o << comparison_svg(title, totals); });
+  out << "wrote " << (text ? (directory / "report.txt").string() + ", " : "")
+      << (directory / "methods.csv").string() << ", " << (directory / "plot.svg").string() << '\n';
+}
+
+std::string method_legend() {
+  std::ostringstream legend;
+  for (const Method method : compared_methods())
+    legend << "  " << std::left << std::setw(13) << name_of(method) << description_of(method) << '\n';
+  return legend.str();
+}
+
+}  // namespace
+
+void run_demo(const DemoSettings& settings, std::ostream& out, std::ostream* terminal) {
+  Progress progress(terminal);
+  Report report(out);
+  const SceneSteps scene = scene_steps(settings);
+  std::vector<MethodTally> tallies = empty_tallies();
+  std::vector<CostVariant> costs = cost_variants();
+  std::int64_t vertex_face = 0, edge_edge = 0;
+  double broad_phase_seconds = 0;
+  for (std::size_t k = 0; k < scene.steps.size(); ++k) {
+    const std::string where = "step " + std::to_string(k + 1) + "/" + std::to_string(scene.steps.size());
+    progress.show(where + ": scene and broad phase");
+    const auto start = std::chrono::steady_clock::now();
+    const Workload workload = workload_of(scene.steps[k]());
+    broad_phase_seconds += seconds_since(start);
+    const auto& candidates = std::get<MeshWorkload>(workload.source).candidates;
+    vertex_face += static_cast<std::int64_t>(candidates.vertex_face.size());
+    edge_edge += static_cast<std::int64_t>(candidates.edge_edge.size());
+    compare_on(workload, settings.threads, tallies, progress, where);
+    if (settings.sections) time_costs(workload, settings.threads, costs, progress, where);
+  }
+  progress.clear();
+
+  std::ostringstream header;
+  header << "batchccd demo: built-in " << scene.description << '\n'
+         << "  " << millions(vertex_face + edge_edge) << " candidates (vf " << millions(vertex_face)
+         << ", ee " << millions(edge_edge) << ") from a swept-box broad phase ("
+         << fixed(broad_phase_seconds, 1) << " s with the scene, not counted below)\n"
+         << "  isa " << name_of(resolve_isa(Isa::automatic)) << ", threads "
+         << (settings.threads > 0 ? std::to_string(settings.threads) : "all") << "; ground truth and TOI reference: exact mode\n\n"
+         << "Methods\n" << method_legend() << '\n';
+  std::ostringstream methods;
+  print_comparison(methods, tallies);
+  report.add(header.str() + methods.str() + '\n');
+
+  if (settings.sections) {
+    std::ostringstream section;
+    section << "What a call pays for (conservative mode, the same candidates)\n";
+    print_costs(section, costs);
+    report.add(section.str() + '\n');
+
+    progress.show("stiff and extreme suite");
+    const auto rows = scenes::evaluate_extreme(scenes::extreme_categories(), {.threads = settings.threads});
+    progress.clear();
+    std::ostringstream extreme;
+    extreme << "Stiff and extreme inputs (each mode against exact mode)\n";
+    scenes::write_extreme_table(extreme, rows);
+    report.add(extreme.str() + '\n');
+  }
+
+  std::vector<std::pair<std::string, MethodTally>> csv_rows;
+  for (const MethodTally& t : tallies) csv_rows.emplace_back(scene.description, t);
+  write_outputs(settings.out, "batchccd demo: " + scene.description, csv_rows, tallies,
+                &report.text(), out);
+}
+
+bool run_report(const ReportSettings& settings, std::ostream& out, std::ostream& errors,
+                std::ostream* terminal) {
+  Progress progress(terminal);
+  std::vector<MethodTally> totals = empty_tallies();
+  std::vector<std::pair<std::string, MethodTally>> csv_rows;
+  std::int64_t candidates = 0, without_truth = 0;
+  bool all_read = true;
+  for (const auto& input : settings.inputs) {
+    std::vector<FoundInput> found;
+    try {
+      found = find_inputs(input, settings.kind, errors);
+    } catch (const std::exception& error) {
+      errors << "batchccd: error: " << error.what() << '\n';
+      all_read = false;
+    }
+    for (const FoundInput& item : found) {
+      try {
+        progress.show(item.path.string() + ": reading");
+        const Workload workload = read_workload(item, settings.kind);
+        std::vector<MethodTally> tallies = empty_tallies();
+        compare_on(workload, settings.threads, tallies, progress, item.path.string());
+        candidates += static_cast<std::int64_t>(workload.size());
+        if (!workload.truth) without_truth += static_cast<std::int64_t>(workload.size());
+        for (std::size_t m = 0; m < tallies.size(); ++m) {
+          totals[m] += tallies[m];
+          csv_rows.emplace_back(workload.name, tallies[m]);
+        }
+      } catch (const std::exception& error) {
+        progress.clear();
+        errors << "batchccd: error: " << error.what() << '\n';
+        all_read = false;
+      }
+    }
+  }
+  progress.clear();
+  out << "batchccd report: " << csv_rows.size() / std::max<std::size_t>(1, totals.size())
+      << " inputs, " << candidates << " candidates; ground truth from the files"
+      << (without_truth > 0 ? " (exact mode's decisions for " + std::to_string(without_truth) +
+                                  " candidates without)"
+                            : "")
+      << "; TOI reference: exact mode\n\nMethods\n"
+      << method_legend() << '\n';
+  print_comparison(out, totals);
+  for (const MethodTally& t : totals) csv_rows.emplace_back("total", t);
+  if (settings.out) write_outputs(*settings.out, "batchccd report", csv_rows, totals, nullptr, out);
+  return all_read;
+}
+
+}  // namespace batchccd::cli
