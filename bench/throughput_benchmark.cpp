@@ -123,8 +123,9 @@ void filter_mesh(benchmark::State& state, Isa isa, Kind kind) {
   if (!kernels) return;
   const ClothCandidates& data = cloth();
   const MeshView view = data.mesh.view();
-  const simd::MeshPositions positions{view.positions_t0.data(), view.positions_t1.data(),
-                                      view.positions_t0.rows()};
+  const simd::PackedPositions packed(view.positions_t0.data(), view.positions_t1.data(),
+                                    view.positions_t0.rows());
+  const simd::MeshPositions positions = packed.view();
   const std::size_t count = kind == Kind::vertex_face ? data.candidates.vertex_face.size()
                                                       : data.candidates.edge_edge.size();
   std::vector<std::uint32_t> survivors(count);

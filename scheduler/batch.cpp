@@ -125,8 +125,9 @@ BatchResult mesh_ccd(const MeshView& mesh, const Candidates& candidates, const O
   const std::size_t edge_edge = options.edge_edge ? candidates.edge_edge.size() : 0;
   BatchResult batch;
   if (options.per_candidate_results) batch.results.resize(vertex_face + edge_edge);
-  const simd::MeshPositions positions{mesh.positions_t0.data(), mesh.positions_t1.data(),
-                                      mesh.positions_t0.rows()};
+  const simd::PackedPositions packed(mesh.positions_t0.data(), mesh.positions_t1.data(),
+                                    mesh.positions_t0.rows());
+  const simd::MeshPositions positions = packed.view();
   run_source(simd::MeshVertexFace{positions, mesh.faces.data(), mesh.faces.rows(),
                                   candidates.vertex_face.data()},
              vertex_face, kernels.vertex_face, options, 0, batch);

@@ -81,19 +81,34 @@ struct Gather {
     }
   }
 
-  static Vector at(const double* x, const double* y, const double* z, const Index& index) {
-    return {gather(x, index), gather(y, index), gather(z, index)};
-  }
+  // The processor can transpose rows into lanes (AVX2, AVX-512); without,
+  // coordinates are gathered.
+  static constexpr bool transposes =
+      std::is_base_of_v<xsimd::avx512f, Arch> || std::is_base_of_v<xsimd::avx2, Arch>;
+  using Rows = const double* [L::size];
 
   static void from(const RawQueries& raw, const Candidates& candidate, Vector (&x)[4][2]) {
-    alignas(64) std::int64_t offset[L::size];
-    for (std::size_t j = 0; j < L::size; ++j) offset[j] = candidate[j] * 24;
-    const Index index = Index::load_aligned(offset);
     const double* data = raw.queries[0].points[0].data();
+    constexpr int doubles_per_query = 24;
+    Double coordinate[doubles_per_query];
+    // Consecutive queries (indices only ever increase) lie in one block of
+    // rows: loads and transposes. Otherwise gathers.
+    if (transposes && candidate[L::size - 1] - candidate[0] == static_cast<std::int64_t>(L::size - 1)) {
+      for (std::size_t block = 0; block < doubles_per_query; block += L::size) {
+        Rows rows;
+        for (std::size_t j = 0; j < L::size; ++j) rows[j] = data + (candidate[0] + j) * doubles_per_query + block;
+        transpose(rows, coordinate + block);
+      }
+    } else {
+      alignas(64) std::int64_t offset[L::size];
+      for (std::size_t j = 0; j < L::size; ++j) offset[j] = candidate[j] * doubles_per_query;
+      const Index index = Index::load_aligned(offset);
+      for (int c = 0; c < doubles_per_query; ++c) coordinate[c] = gather(data + c, index);
+    }
     for (int k = 1; k <= 4; ++k)
       for (int tau = 0; tau < 2; ++tau) {
-        const double* p = data + 3 * (reference::point_index(raw.kind, k) + 4 * tau);
-        x[k - 1][tau] = at(p, p + 1, p + 2, index);
+        const Double* c = coordinate + 3 * (reference::point_index(raw.kind, k) + 4 * tau);
+        x[k - 1][tau] = {c[0], c[1], c[2]};
       }
   }
 
@@ -104,11 +119,53 @@ struct Gather {
       const auto vertices = vertex_ids(mesh, static_cast<std::size_t>(candidate[j]));
       for (int k = 0; k < 4; ++k) ids[k][j] = vertices[k];
     }
-    const MeshPositions& p = mesh.positions;
+    const double* packed = mesh.positions.rows;
     for (int k = 0; k < 4; ++k) {
-      const Index index = Index::load_aligned(ids[k]);
-      x[k][0] = at(p.t0, p.t0 + p.rows, p.t0 + 2 * p.rows, index);
-      x[k][1] = at(p.t1, p.t1 + p.rows, p.t1 + 2 * p.rows, index);
+      Double coordinate[kRowDoubles];
+      if constexpr (transposes) {
+        for (std::size_t part = 0; part < kRowDoubles; part += L::size) {
+          Rows rows;
+          for (std::size_t j = 0; j < L::size; ++j) rows[j] = packed + kRowDoubles * ids[k][j] + part;
+          transpose(rows, coordinate + part);
+        }
+      } else {
+        alignas(64) std::int64_t offset[L::size];
+        for (std::size_t j = 0; j < L::size; ++j) offset[j] = kRowDoubles * ids[k][j];
+        const Index index = Index::load_aligned(offset);
+        for (int c = 0; c < 6; ++c) coordinate[c] = gather(packed + c, index);
+      }
+      x[k][0] = {coordinate[0], coordinate[1], coordinate[2]};
+      x[k][1] = {coordinate[3], coordinate[4], coordinate[5]};
+    }
+  }
+
+  // out[c] lane j = rows[j][c] for c below the lane count.
+  static void transpose(const Rows& rows, Double* out) {
+    if constexpr (std::is_base_of_v<xsimd::avx512f, Arch>) {
+      __m512d r[8], t[8], u[8];
+      for (int i = 0; i < 8; ++i) r[i] = _mm512_loadu_pd(rows[i]);
+      for (int i = 0; i < 8; i += 2) {
+        t[i] = _mm512_unpacklo_pd(r[i], r[i + 1]);      // columns 0, 2, 4, 6 of rows i, i+1
+        t[i + 1] = _mm512_unpackhi_pd(r[i], r[i + 1]);  // columns 1, 3, 5, 7
+      }
+      for (int i = 0; i < 8; i += 4)
+        for (int odd = 0; odd < 2; ++odd) {
+          u[i + odd] = _mm512_shuffle_f64x2(t[i + odd], t[i + 2 + odd], 0x88);      // columns 0|4 (1|5)
+          u[i + 2 + odd] = _mm512_shuffle_f64x2(t[i + odd], t[i + 2 + odd], 0xdd);  // columns 2|6 (3|7)
+        }
+      for (int c = 0; c < 4; ++c) {
+        out[c] = _mm512_shuffle_f64x2(u[c], u[c + 4], 0x88);
+        out[c + 4] = _mm512_shuffle_f64x2(u[c], u[c + 4], 0xdd);
+      }
+    } else if constexpr (std::is_base_of_v<xsimd::avx2, Arch>) {
+      __m256d r[4];
+      for (int i = 0; i < 4; ++i) r[i] = _mm256_loadu_pd(rows[i]);
+      const __m256d t0 = _mm256_unpacklo_pd(r[0], r[1]), t1 = _mm256_unpackhi_pd(r[0], r[1]);
+      const __m256d t2 = _mm256_unpacklo_pd(r[2], r[3]), t3 = _mm256_unpackhi_pd(r[2], r[3]);
+      out[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
+      out[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
+      out[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
+      out[3] = _mm256_permute2f128_pd(t1, t3, 0x31);
     }
   }
 };

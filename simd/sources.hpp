@@ -1,8 +1,11 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <new>
 
 #include "batchccd/query.hpp"
 #include "reference/scaled_query.hpp"
@@ -18,11 +21,41 @@ struct RawQueries {
   const Query* queries;
 };
 
-// Positions are Eigen's column-major n x 3: x, y, z columns of `rows` each.
+// Vertex positions, one row of kRowDoubles per vertex: x, y, z at t0, x, y,
+// z at t1, two zeros. A row is one 64-byte cache line, so a lane loads a
+// vertex's six coordinates at once (and transposes) instead of gathering
+// them one by one.
+inline constexpr int kRowDoubles = 8;
 struct MeshPositions {
-  const double* t0;
-  const double* t1;
-  std::int64_t rows;
+  const double* rows;  // 64-byte aligned
+};
+
+// Owns the packed rows of a mesh, made from Eigen's column-major n x 3
+// matrices (x, y, z columns of n each), once per call: O(vertices), where
+// the work is O(candidates).
+class PackedPositions {
+ public:
+  PackedPositions(const double* t0, const double* t1, std::int64_t vertices)
+      : rows_(static_cast<double*>(::operator new[](
+                  sizeof(double) * kRowDoubles * static_cast<std::size_t>(std::max<std::int64_t>(vertices, 1)),
+                  std::align_val_t(64))),
+              Free{}) {
+    for (std::int64_t v = 0; v < vertices; ++v) {
+      double* row = rows_.get() + kRowDoubles * v;
+      for (int c = 0; c < 3; ++c) {
+        row[c] = t0[v + c * vertices];
+        row[c + 3] = t1[v + c * vertices];
+      }
+      row[6] = row[7] = 0;
+    }
+  }
+  MeshPositions view() const { return {rows_.get()}; }
+
+ private:
+  struct Free {
+    void operator()(double* p) const { ::operator delete[](p, std::align_val_t(64)); }
+  };
+  std::unique_ptr<double[], Free> rows_;
 };
 
 struct MeshVertexFace {
@@ -54,13 +87,12 @@ struct MeshEdgeEdge {
 template <class MeshSource>
 Query query_at(const MeshSource& mesh, std::size_t i) {
   const std::array<std::int64_t, 4> ids = vertex_ids(mesh, i);
-  const MeshPositions& x = mesh.positions;
   Query query;
   for (int k = 1; k <= 4; ++k) {
-    const std::int64_t id = ids[k - 1];
+    const double* row = mesh.positions.rows + kRowDoubles * ids[k - 1];
     const int slot = reference::point_index(MeshSource::kind, k);
-    query.points[slot] = Vec3(x.t0[id], x.t0[id + x.rows], x.t0[id + 2 * x.rows]);
-    query.points[slot + 4] = Vec3(x.t1[id], x.t1[id + x.rows], x.t1[id + 2 * x.rows]);
+    query.points[slot] = Vec3(row[0], row[1], row[2]);
+    query.points[slot + 4] = Vec3(row[3], row[4], row[5]);
   }
   return query;
 }

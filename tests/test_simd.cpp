@@ -165,7 +165,8 @@ TEST(SimdKernels, MatchTheReferenceFilterOnMeshIndexLists) {
   std::vector<std::array<int, 4>> ee(pairs);
   for (auto& p : vf) p = {vertex(random), face(random)};
   for (auto& e : ee) e = {vertex(random), vertex(random), vertex(random), vertex(random)};
-  const simd::MeshPositions positions{t0.data(), t1.data(), vertices};
+  const simd::PackedPositions packed(t0.data(), t1.data(), vertices);
+  const simd::MeshPositions positions = packed.view();
   const simd::MeshVertexFace vf_source{positions, face_matrix.data(), faces, vf.data()};
   const simd::MeshEdgeEdge ee_source{positions, ee.data()};
   for (const reference::FilterSettings& settings : all_settings()) {
