@@ -6,10 +6,14 @@
 //
 //   build/bench/batchccd_scaling_benchmark
 //
-// Compare items_per_second between thread counts of one run.
+// After the table it prints each suite's candidates per second at N threads
+// over 1 thread, from the same run.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <map>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -87,7 +91,45 @@ void thread_counts(benchmark::internal::Benchmark* b) {
 BENCHMARK(mesh_scene)->Apply(thread_counts)->Unit(benchmark::kMillisecond);
 BENCHMARK(streamed_queries)->Apply(thread_counts)->Unit(benchmark::kMillisecond);
 
+// The console table, and each run's rate kept by suite and thread count.
+class ScalingReporter : public benchmark::ConsoleReporter {
+ public:
+  void ReportRuns(const std::vector<Run>& runs) override {
+    ConsoleReporter::ReportRuns(runs);
+    for (const Run& run : runs) {
+      if (run.error_occurred || run.run_type != Run::RT_Iteration) continue;
+      const std::string name = run.benchmark_name();  // "suite/threads/real_time"
+      const auto slash = name.find('/');
+      const auto found = run.counters.find("items_per_second");
+      if (slash == std::string::npos || found == run.counters.end()) continue;
+      rates_[name.substr(0, slash)][std::stoi(name.substr(slash + 1))] = found->second.value;
+    }
+  }
+
+  void print_ratios() const {
+    for (const auto& [suite, by_threads] : rates_) {
+      const auto one = by_threads.find(1);
+      if (one == by_threads.end() || one->second <= 0) continue;
+      for (const auto& [threads, rate] : by_threads)
+        if (threads != 1)
+          std::printf("%s: %d threads / 1 thread = %.2fx (%.3g vs %.3g candidates/s)\n", suite.c_str(),
+                      threads, rate / one->second, rate, one->second);
+    }
+  }
+
+ private:
+  std::map<std::string, std::map<int, double>> rates_;
+};
+
 }  // namespace
 }  // namespace batchccd
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  batchccd::ScalingReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  reporter.print_ratios();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <type_traits>
 
 #include <immintrin.h>
@@ -231,22 +232,29 @@ template <class Arch, class Source>
   Vector x[4][2];
   Gather<Arch>::from(source, candidate, x);
 
-  // Non-finite input: x - x is NaN.
-  Double nan_probe[24], magnitude[24];
+  // The largest magnitude as the largest bit pattern of |x| (the orders
+  // agree for non-negative doubles), which also makes a NaN or infinite
+  // coordinate show as a non-finite maximum: one integer max a coordinate.
+  using Index = typename L::Index;
+  Index magnitude_bits[24];
   for (int j = 0; j < 8; ++j) {
     const Vector& p = (&x[0][0])[j];
     const Double coordinates[3] = {p.x, p.y, p.z};
-    for (int c = 0; c < 3; ++c) {
-      nan_probe[3 * j + c] = coordinates[c] - coordinates[c];
-      magnitude[3 * j + c] = xsimd::abs(coordinates[c]);
-    }
+    for (int c = 0; c < 3; ++c)
+      magnitude_bits[3 * j + c] =
+          xsimd::bitwise_cast<Index>(coordinates[c]) & Index(0x7fffffffffffffffll);
   }
-  const Double largest = pairwise(magnitude, [](Double a, Double b) { return xsimd::max(a, b); });
-  const Mask finite = pairwise(nan_probe, [](Double a, Double b) { return a + b; }) == Double(0.0);
-  const Mask nonzero = largest > Double(0.0);
-  const auto input_scale = L::inverse_power_of_two(xsimd::select(nonzero, largest, Double(1.0)));
-
-  input_scale.scale(&x[0][0], 8);
+  const Double largest = xsimd::bitwise_cast<Double>(
+      pairwise(magnitude_bits, [](Index a, Index b) { return xsimd::max(a, b); }));
+  const Mask finite = largest <= Double(std::numeric_limits<double>::max());
+  // reference::scale_query: inputs near overflow quartered first. That is
+  // rare, so a group of lanes without one skips the multiplications.
+  const Mask huge = largest >= Double(reference::kHugeInput);
+  if (xsimd::any(huge)) {
+    const Double factor = xsimd::select(huge, Double(0.25), Double(1.0));
+    for (auto& point : x)
+      for (Vector& p : point) p = {p.x * factor, p.y * factor, p.z * factor};
+  }
   Vector relative[3][2];
   Double difference_magnitude[18];
   for (int tau = 0; tau < 2; ++tau)
@@ -262,11 +270,10 @@ template <class Arch, class Source>
   const auto scale = L::inverse_power_of_two(xsimd::select(distinct, largest_difference, Double(1.0)));
   scale.scale(&relative[0][0], 6);
 
-  // ScaledQuery::absolute_error: when the input normalisation scaled down
-  // (largest >= 2) and the second scaled up, its underflow floor, magnified.
-  const Mask magnified = (largest >= Double(2.0)) & (largest_difference < Double(2.0));
+  // ScaledQuery::absolute_error: a quartered input's underflow floor (twice
+  // 2^-1074), scaled with the differences, plus the scaling's own.
   const Double absolute_error =
-      xsimd::select(magnified, scale.apply(Double(0x1p-1074)), Double(0.0)) + Double(0x1p-1074);
+      xsimd::select(huge, scale.apply(Double(0x1p-1073)), Double(0.0)) + Double(0x1p-1074);
   const Mask evaluable = finite & distinct;
   const std::uint32_t lanes_in_use = (1u << count) - 1;
 

@@ -38,15 +38,22 @@ void settle_exactly(Kind kind, const Query& query, const Options& options, Evalu
   evaluation.result = outcome.hit ? QueryResult{true, outcome.toi, Status::ok} : QueryResult{};
 }
 
+bool all_finite(const Query& query) {
+  for (const Vec3& point : query.points)
+    if (!point.allFinite()) return false;
+  return true;
+}
+
 Evaluation evaluate(Kind kind, const Query& query, const Options& options, bool filtered) {
   Evaluation evaluation;
+  if (options.mode == Mode::cubic) {  // the baseline as it is, without the scaled frame
+    evaluation.result = all_finite(query) ? solve_cubic(kind, query)
+                                          : QueryResult{true, 0.0, Status::invalid_input};
+    return evaluation;
+  }
   const ScaledQuery scaled = scale_query(kind, query);
   if (!scaled.finite) {
     evaluation.result = {true, 0.0, Status::invalid_input};
-    return evaluation;
-  }
-  if (options.mode == Mode::cubic) {
-    evaluation.result = solve_cubic(kind, query);
     return evaluation;
   }
   const bool exact = options.mode == Mode::exact;

@@ -1,20 +1,41 @@
 #include "reference/scaled_query.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 namespace batchccd::reference {
 namespace {
 
 constexpr double kSmallestSubnormal = 0x1p-1074;
 
-// x * 2^exponent, correctly rounded, for any exponent (no overflowing factor).
-Vec3 scale_by_power_of_two(const Vec3& x, int exponent) {
-  return {std::ldexp(x[0], exponent), std::ldexp(x[1], exponent), std::ldexp(x[2], exponent)};
+// 2^exponent for -1074 <= exponent <= 1023 (subnormal below -1022).
+double power_of_two(int exponent) {
+  return exponent >= -1022 ? std::bit_cast<double>(static_cast<std::uint64_t>(exponent + 1023) << 52)
+                           : std::bit_cast<double>(std::uint64_t{1} << (exponent + 1074));
+}
+
+// floor(log2(x)) for finite x > 0, subnormals included (std::ilogb without
+// the library call).
+int binary_exponent(double x) {
+  const auto bits = std::bit_cast<std::uint64_t>(x);
+  const int biased = static_cast<int>(bits >> 52);
+  return biased > 0 ? biased - 1023 : -1011 - std::countl_zero(bits);
+}
+
+// x * 2^exponent, one correctly rounded product: the same as std::ldexp
+// (a library call, several times the cost of the arithmetic) for exponent
+// >= -1074. Past 2^1023 two factors, of which the first is exact: callers
+// scale up by that much only values below 2^-1022.
+double times_power_of_two(double x, int exponent) {
+  if (exponent > 1023) return x * 0x1p1023 * power_of_two(exponent - 1023);
+  return x * power_of_two(exponent);
 }
 
 double largest_magnitude(const Query& query) {
   double largest = 0;
-  for (const Vec3& point : query.points) largest = std::fmax(largest, point.cwiseAbs().maxCoeff());
+  for (const Vec3& point : query.points) largest = std::max(largest, point.cwiseAbs().maxCoeff());
   return largest;
 }
 
@@ -32,33 +53,37 @@ ScaledQuery scale_query(Kind kind, const Query& query) {
     scaled.coincident = true;
     return scaled;
   }
-  // First normalisation (largest input in [1, 2)) so the differences below
-  // cannot overflow. Scaling down may round tiny coordinates to subnormals.
-  const int input_exponent = -std::ilogb(input_magnitude);
-  const double input_floor = input_exponent < 0 ? kSmallestSubnormal : 0.0;
+  // Differences in the input's own units: subtraction commutes exactly with
+  // power-of-two scaling (a subnormal difference of doubles is exact), so
+  // the frame below does not depend on units. Only inputs within a factor 4
+  // of overflow are first quartered so that no difference overflows; that
+  // may round tiny coordinates to subnormals (input_floor).
+  const bool huge = input_magnitude >= kHugeInput;
+  const double input_factor = huge ? 0.25 : 1.0;
+  const double input_floor = huge ? kSmallestSubnormal : 0.0;
 
   double largest = 0;
   for (int tau = 0; tau < 2; ++tau) {
-    const Vec3 origin =
-        scale_by_power_of_two(query.points[point_index(kind, 1) + 4 * tau], input_exponent);
+    const Vec3 origin = query.points[point_index(kind, 1) + 4 * tau] * input_factor;
     for (int i = 0; i < 3; ++i) {
-      const Vec3 point =
-          scale_by_power_of_two(query.points[point_index(kind, i + 2) + 4 * tau], input_exponent);
+      const Vec3 point = query.points[point_index(kind, i + 2) + 4 * tau] * input_factor;
       scaled.relative[i][tau] = point - origin;
-      largest = std::fmax(largest, scaled.relative[i][tau].cwiseAbs().maxCoeff());
+      largest = std::max(largest, scaled.relative[i][tau].cwiseAbs().maxCoeff());
     }
   }
   if (largest == 0) {
     scaled.coincident = true;
     return scaled;
   }
-  // Second normalisation: the largest difference in [1, 2).
-  const int exponent = -std::ilogb(largest);
+  // Normalisation: the largest difference in [1, 2).
+  const int exponent = -binary_exponent(largest);
   for (auto& point_pair : scaled.relative)
-    for (Vec3& value : point_pair) value = scale_by_power_of_two(value, exponent);
-  // Both inputs of a difference may carry input_floor; scaling down by at
-  // most 4 may round a subnormal once more.
-  scaled.absolute_error = std::ldexp(2 * input_floor, exponent) + kSmallestSubnormal;
+    for (Vec3& value : point_pair)
+      value = {times_power_of_two(value[0], exponent), times_power_of_two(value[1], exponent),
+               times_power_of_two(value[2], exponent)};
+  // Both inputs of a difference may carry input_floor, magnified with it;
+  // scaling down may round a subnormal once more.
+  scaled.absolute_error = times_power_of_two(2 * input_floor, exponent) + kSmallestSubnormal;
   return scaled;
 }
 

@@ -28,6 +28,10 @@ struct ScaledQuery {
 
 ScaledQuery scale_query(Kind kind, const Query& query);
 
+// Inputs at least this large are quartered before the differences are taken
+// (their differences could overflow); shared with the lane kernels.
+inline constexpr double kHugeInput = 0x1p1022;
+
 // Index of DESIGN.md's x_k (k = 1..4) among Query::points at t0 (add 4 for t1).
 // Always inlined: the lane kernels, compiled with other instruction sets,
 // call it too, and an out-of-line copy from them must never be shared.
