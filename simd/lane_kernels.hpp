@@ -217,11 +217,10 @@ enum class LaneFilter { sign, separation };
 // One filter over the candidates of `candidate`, `count` (<= lane count) of
 // them in use: bit k set when lane k is certainly (or, uncertified, plainly)
 // free of contact. Lanes past count are never culled.
-template <class Arch, class Source>
+template <class Arch, LaneFilter filter, class Source>
 [[gnu::flatten]] std::uint32_t culled_lanes(const Source& source,
                                             const typename Gather<Arch>::Candidates& candidate,
-                                            std::size_t count, const reference::FilterSettings& settings,
-                                            LaneFilter filter) {
+                                            std::size_t count, const reference::FilterSettings& settings) {
   const bool certified = settings.certified;
   using L = Lanes<Arch>;
   using Double = typename L::Double;
@@ -277,7 +276,7 @@ template <class Arch, class Source>
   const Mask evaluable = finite & distinct;
   const std::uint32_t lanes_in_use = (1u << count) - 1;
 
-  if (filter == LaneFilter::sign) {
+  if constexpr (filter == LaneFilter::sign) {
     reference::BernsteinCubic<Double> cubic =
         reference::bernstein_cubic(relative[0][0], relative[0][1], relative[1][0],
                                    relative[1][1], relative[2][0], relative[2][1]);
@@ -298,8 +297,7 @@ template <class Arch, class Source>
     const Mask culled = reference::sign_filter_culls(cubic, relative_error, floor, half_relative_error,
                                                      half_floor, settings.subdivide);
     return lane_bits<Arch>(culled & evaluable) & lanes_in_use;
-  }
-  {
+  } else {
     // reference::separation_error, lane by lane.
     const reference::SeparationErrorModel error = reference::separation_error(0.0, certified);
     const Mask enabled = certified ? Mask(absolute_error <= Double(0x1p-900)) : Mask(true);
@@ -328,7 +326,7 @@ std::size_t filter_range(const Source& source, std::size_t begin, std::size_t en
       offsets[j] = static_cast<std::uint32_t>(i - begin);
     }
     const std::uint32_t culled =
-        settings.sign ? culled_lanes<Arch>(source, candidate, count, settings, LaneFilter::sign) : 0;
+        settings.sign ? culled_lanes<Arch, LaneFilter::sign>(source, candidate, count, settings) : 0;
     counts.sign += static_cast<std::size_t>(__builtin_popcount(culled));
     kept += compress<Arch>(~culled & ((1u << count) - 1), offsets, survivors + kept);
   }
@@ -342,7 +340,7 @@ std::size_t filter_range(const Source& source, std::size_t begin, std::size_t en
       candidate[j] = static_cast<std::int64_t>(begin + offsets[j]);
     }
     const std::uint32_t culled =
-        culled_lanes<Arch>(source, candidate, count, settings, LaneFilter::separation);
+        culled_lanes<Arch, LaneFilter::separation>(source, candidate, count, settings);
     counts.separation += static_cast<std::size_t>(__builtin_popcount(culled));
     kept += compress<Arch>(~culled & ((1u << count) - 1), offsets, survivors + kept);
   }
