@@ -29,6 +29,9 @@ struct Partial {
 // Candidates a worker filters at once: the survivor list stays in cache and
 // the scheduler has enough pieces to balance two or more threads.
 constexpr std::size_t kBatchSize = 2048;
+// Survivors a worker solves at once: their costs vary by orders of
+// magnitude and cluster where the meshes touch, so small pieces balance.
+constexpr std::size_t kSolverGrain = 8;
 
 void tally(const reference::Evaluation& e, Partial& partial) {
   Counters& c = partial.counters;
@@ -40,9 +43,21 @@ void tally(const reference::Evaluation& e, Partial& partial) {
   if (e.result.hit) partial.earliest_toi = std::min(partial.earliest_toi, e.result.toi);
 }
 
-// Evaluates candidates [0, count) of a source: the lane filter over batches,
-// then the scalar path for each survivor, writing results[offset + i] when
-// per-candidate results are asked for. Results land at fixed places and the
+// Runs `work` with Options::threads workers: in an arena of that many, or
+// in the caller's arena when it asks for none.
+template <class Work>
+void in_arena(const Options& options, const Work& work) {
+  if (options.threads > 0) {
+    tbb::task_arena arena(options.threads);
+    arena.execute(work);
+  } else {
+    work();
+  }
+}
+
+// Evaluates candidates [0, count) of a source, in the current arena: the
+// lane filter over batches, then the scalar path for every survivor, writing
+// results[offset + i] when per-candidate results are asked for. Results land at fixed places and the
 // reductions (sums, minimum) do not depend on order, so the outcome is the
 // same for any thread count.
 template <class Source>
@@ -51,40 +66,50 @@ void run_source(const Source& source, std::size_t count, simd::FilterFunction<So
   const bool filtered = options.mode != Mode::cubic;  // the baseline runs unfiltered
   const reference::FilterSettings settings = reference::filter_settings(options);
   tbb::combinable<Partial> partials;
-  tbb::enumerable_thread_specific<std::vector<std::uint32_t>> survivor_buffers;
-  auto work = [&] {
+  const auto evaluate = [&](std::size_t i, Partial& partial) {
+    const reference::Evaluation e =
+        reference::evaluate_query(source.kind, simd::query_at(source, i), options, filtered);
+    tally(e, partial);
+    if (options.per_candidate_results) batch.results[offset + i] = e.result;
+  };
+  if (!filtered) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kBatchSize),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        Partial& partial = partials.local();
+                        partial.counters.candidates += static_cast<std::int64_t>(range.size());
+                        for (std::size_t i = range.begin(); i < range.end(); ++i) evaluate(i, partial);
+                      },
+                      tbb::simple_partitioner());
+  } else {
+    // The lane filters over batches; each worker keeps its survivors.
+    tbb::enumerable_thread_specific<std::vector<std::uint32_t>> batch_survivors;
+    tbb::enumerable_thread_specific<std::vector<std::size_t>> survivors;
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, count, kBatchSize),
         [&](const tbb::blocked_range<std::size_t>& range) {
-          std::vector<std::uint32_t>& survivors = survivor_buffers.local();
-          if (survivors.size() < range.size()) survivors.resize(std::max(range.size(), kBatchSize));
-          std::size_t kept = range.size();
+          std::vector<std::uint32_t>& kept_in_batch = batch_survivors.local();
+          if (kept_in_batch.size() < range.size()) kept_in_batch.resize(std::max(range.size(), kBatchSize));
           simd::FilterCounts culls;
-          if (filtered) {
-            kept = filter(source, range.begin(), range.end(), settings, survivors.data(), culls);
-          } else {
-            std::iota(survivors.begin(), survivors.begin() + static_cast<std::ptrdiff_t>(kept), 0u);
-          }
+          const std::size_t kept =
+              filter(source, range.begin(), range.end(), settings, kept_in_batch.data(), culls);
           Partial& partial = partials.local();
           partial.counters.candidates += static_cast<std::int64_t>(range.size());
           partial.counters.culled += static_cast<std::int64_t>(range.size() - kept);
           partial.counters.culled_by_sign += static_cast<std::int64_t>(culls.sign);
           partial.counters.culled_by_separation += static_cast<std::int64_t>(culls.separation);
-          for (std::size_t j = 0; j < kept; ++j) {
-            const std::size_t i = range.begin() + survivors[j];
-            const reference::Evaluation e =
-                reference::evaluate_query(source.kind, simd::query_at(source, i), options, filtered);
-            tally(e, partial);
-            if (options.per_candidate_results) batch.results[offset + i] = e.result;
-          }
+          std::vector<std::size_t>& mine = survivors.local();
+          for (std::size_t j = 0; j < kept; ++j) mine.push_back(range.begin() + kept_in_batch[j]);
         },
         tbb::simple_partitioner());
-  };
-  if (options.threads > 0) {
-    tbb::task_arena arena(options.threads);
-    arena.execute(work);
-  } else {
-    work();  // the caller's arena
+    // Then all survivors, in small pieces.
+    std::vector<std::size_t> all;
+    for (const std::vector<std::size_t>& mine : survivors) all.insert(all.end(), mine.begin(), mine.end());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, all.size(), kSolverGrain),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        Partial& partial = partials.local();
+                        for (std::size_t k = range.begin(); k < range.end(); ++k) evaluate(all[k], partial);
+                      },
+                      tbb::simple_partitioner());
   }
   partials.combine_each([&](const Partial& partial) {
     batch.counters += partial.counters;
@@ -114,25 +139,28 @@ BatchResult batch_ccd(Kind kind, std::span<const Query> queries, const Options& 
   BatchResult batch;
   if (options.per_candidate_results) batch.results.resize(queries.size());
   if (!queries.empty())
-    run_source(simd::RawQueries{kind, queries.data()}, queries.size(), kernels.raw, options, 0, batch);
+    in_arena(options, [&] {
+      run_source(simd::RawQueries{kind, queries.data()}, queries.size(), kernels.raw, options, 0, batch);
+    });
   return batch;
 }
 
 BatchResult mesh_ccd(const MeshView& mesh, const Candidates& candidates, const Options& options) {
   const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
-  check_mesh(mesh, candidates);
-  const std::size_t vertex_face = options.vertex_face ? candidates.vertex_face.size() : 0;
-  const std::size_t edge_edge = options.edge_edge ? candidates.edge_edge.size() : 0;
   BatchResult batch;
-  if (options.per_candidate_results) batch.results.resize(vertex_face + edge_edge);
-  const simd::PackedPositions packed(mesh.positions_t0.data(), mesh.positions_t1.data(),
-                                    mesh.positions_t0.rows());
-  const simd::MeshPositions positions = packed.view();
-  run_source(simd::MeshVertexFace{positions, mesh.faces.data(), mesh.faces.rows(),
-                                  candidates.vertex_face.data()},
-             vertex_face, kernels.vertex_face, options, 0, batch);
-  run_source(simd::MeshEdgeEdge{positions, candidates.edge_edge.data()}, edge_edge,
-             kernels.edge_edge, options, vertex_face, batch);
+  in_arena(options, [&] {
+    check_mesh(mesh, candidates);
+    const std::size_t vertex_face = options.vertex_face ? candidates.vertex_face.size() : 0;
+    const std::size_t edge_edge = options.edge_edge ? candidates.edge_edge.size() : 0;
+    if (options.per_candidate_results) batch.results.resize(vertex_face + edge_edge);
+    const simd::PackedPositions packed(mesh.positions_t0.data(), mesh.positions_t1.data(),
+                                      mesh.positions_t0.rows());
+    const simd::MeshVertexFace vertex_face_source{packed.view(), mesh.faces.data(), mesh.faces.rows(),
+                                                  candidates.vertex_face.data()};
+    const simd::MeshEdgeEdge edge_edge_source{packed.view(), candidates.edge_edge.data()};
+    run_source(vertex_face_source, vertex_face, kernels.vertex_face, options, 0, batch);
+    run_source(edge_edge_source, edge_edge, kernels.edge_edge, options, vertex_face, batch);
+  });
   return batch;
 }
 

@@ -3,6 +3,10 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 
 namespace batchccd {
 
@@ -27,17 +31,32 @@ bool outside(int id, Eigen::Index count) {
   return static_cast<std::uint64_t>(static_cast<std::int64_t>(id)) >= static_cast<std::uint64_t>(count);
 }
 
-// One branch-free pass over every index, so that a valid call (the common
-// case) pays for no per-index message machinery.
+// Whether some item of `items` has an index out of range, in parallel
+// pieces (the lists are as long as the work), each one branch-free pass.
+template <class Item, class Outside>
+bool any_outside(const std::vector<Item>& items, Outside item_outside) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, items.size(), 1 << 16), false,
+      [&](const tbb::blocked_range<std::size_t>& range, bool found) {
+        for (std::size_t i = range.begin(); i < range.end(); ++i) found |= item_outside(items[i]);
+        return found;
+      },
+      [](bool a, bool b) { return a || b; });
+}
+
+// Every index at once, so that a valid call (the common case) pays for no
+// per-index message machinery.
 bool all_in_range(const MeshView& mesh, const Candidates& candidates) {
   const Eigen::Index n = mesh.positions_t0.rows(), m = mesh.faces.rows();
-  bool any_outside = false;
-  for (Eigen::Index i = 0; i < mesh.faces.size(); ++i) any_outside |= outside(mesh.faces.data()[i], n);
-  for (const auto& [vertex, face] : candidates.vertex_face)
-    any_outside |= outside(vertex, n) | outside(face, m);
-  for (const auto& pair : candidates.edge_edge)
-    for (int id : pair) any_outside |= outside(id, n);
-  return !any_outside;
+  bool found = false;
+  for (Eigen::Index i = 0; i < mesh.faces.size(); ++i) found |= outside(mesh.faces.data()[i], n);
+  found |= any_outside(candidates.vertex_face, [n, m](const std::array<int, 2>& pair) {
+    return outside(pair[0], n) | outside(pair[1], m);
+  });
+  found |= any_outside(candidates.edge_edge, [n](const std::array<int, 4>& pair) {
+    return outside(pair[0], n) | outside(pair[1], n) | outside(pair[2], n) | outside(pair[3], n);
+  });
+  return !found;
 }
 
 }  // namespace
