@@ -7,7 +7,9 @@
 //   build/bench/batchccd_scaling_benchmark
 //
 // After the table it prints each suite's candidates per second at N threads
-// over 1 thread, from the same run.
+// over 1 thread, from the same run (the medians with --benchmark_repetitions;
+// --benchmark_enable_random_interleaving=true spreads a noisy machine's
+// drift over all thread counts).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -97,7 +99,9 @@ class ScalingReporter : public benchmark::ConsoleReporter {
   void ReportRuns(const std::vector<Run>& runs) override {
     ConsoleReporter::ReportRuns(runs);
     for (const Run& run : runs) {
-      if (run.error_occurred || run.run_type != Run::RT_Iteration) continue;
+      // With repetitions the median is reported last, so it is what stays.
+      const bool median = run.run_type == Run::RT_Aggregate && run.aggregate_name == "median";
+      if (run.error_occurred || (run.run_type != Run::RT_Iteration && !median)) continue;
       const std::string name = run.benchmark_name();  // "suite/threads/real_time"
       const auto slash = name.find('/');
       const auto found = run.counters.find("items_per_second");
