@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -35,9 +36,14 @@ const MethodEntry& entry(Method method) {
   throw std::invalid_argument("unknown method");
 }
 
+// Every method hands back its hits only, as a simulator would ask: one
+// result per candidate (24 bytes, most of them "no contact") would cost as
+// much as the filters, and the same for every method.
 Options engine_options(Method method, int threads) {
   Options options;
   options.threads = threads;
+  options.per_candidate_results = false;
+  options.hit_list = true;
   switch (method) {
     case Method::exact: options.mode = Mode::exact; break;
     case Method::conservative: options.mode = Mode::conservative; break;
@@ -54,16 +60,17 @@ Options engine_options(Method method, int threads) {
 }
 
 // The peer on every candidate, parallel like the engine (FCL is thread-safe
-// here: Intersect's functions are static and keep no state).
-std::vector<QueryResult> run_fcl(const Workload& workload, int threads) {
-  std::vector<QueryResult> results(workload.size());
+// here: Intersect's functions are static and keep no state); its hits.
+std::vector<Hit> run_fcl(const Workload& workload, int threads) {
+  tbb::enumerable_thread_specific<std::vector<Hit>> found;
   auto work = [&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, workload.size(), 2048),
                       [&](const tbb::blocked_range<std::size_t>& range) {
+                        std::vector<Hit>& mine = found.local();
                         for (std::size_t i = range.begin(); i < range.end(); ++i) {
                           const peers::PeerResult r =
                               peers::fcl_ccd(workload.kind_at(i), workload.query_at(i));
-                          results[i] = {r.hit, r.toi, Status::ok};
+                          if (r.hit) mine.push_back({i, r.toi, Status::ok});
                         }
                       });
   };
@@ -73,6 +80,15 @@ std::vector<QueryResult> run_fcl(const Workload& workload, int threads) {
   } else {
     work();
   }
+  std::vector<Hit> hits;
+  for (const std::vector<Hit>& mine : found) hits.insert(hits.end(), mine.begin(), mine.end());
+  return hits;
+}
+
+// One result per candidate from a hit list (after the clock stopped).
+std::vector<QueryResult> dense_results(const std::vector<Hit>& hits, std::size_t count) {
+  std::vector<QueryResult> results(count);
+  for (const Hit& hit : hits) results[hit.candidate] = {true, hit.toi, hit.status};
   return results;
 }
 
@@ -91,14 +107,16 @@ std::string_view description_of(Method method) { return entry(method).descriptio
 MethodRun run_method(Method method, const Workload& workload, int threads) {
   MethodRun run;
   const auto start = std::chrono::steady_clock::now();
+  std::vector<Hit> hits;
   if (method == Method::fcl) {
-    run.results = run_fcl(workload, threads);
+    hits = run_fcl(workload, threads);
   } else {
     BatchResult batch = workload.run(engine_options(method, threads));
-    run.results = std::move(batch.results);
+    hits = std::move(batch.hits);
     run.culled = batch.counters.culled;
   }
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.results = dense_results(hits, workload.size());
   return run;
 }
 

@@ -24,6 +24,7 @@ namespace {
 struct Partial {
   Counters counters;
   double earliest_toi = std::numeric_limits<double>::infinity();
+  std::vector<Hit> hits;  // Options::hit_list, in the order found
 };
 
 // Candidates a worker filters at once: the survivor list stays in cache and
@@ -71,6 +72,7 @@ void run_source(const Source& source, std::size_t count, simd::FilterFunction<So
         reference::evaluate_query(source.kind, simd::query_at(source, i), options, filtered);
     tally(e, partial);
     if (options.per_candidate_results) batch.results[offset + i] = e.result;
+    if (options.hit_list && e.result.hit) partial.hits.push_back({offset + i, e.result.toi, e.result.status});
   };
   if (!filtered) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kBatchSize),
@@ -114,7 +116,14 @@ void run_source(const Source& source, std::size_t count, simd::FilterFunction<So
   partials.combine_each([&](const Partial& partial) {
     batch.counters += partial.counters;
     batch.earliest_toi = std::min(batch.earliest_toi, partial.earliest_toi);
+    batch.hits.insert(batch.hits.end(), partial.hits.begin(), partial.hits.end());
   });
+}
+
+// Workers find hits in any order; the list is in candidate order.
+void sort_hits(BatchResult& batch) {
+  std::sort(batch.hits.begin(), batch.hits.end(),
+            [](const Hit& a, const Hit& b) { return a.candidate < b.candidate; });
 }
 
 }  // namespace
@@ -142,6 +151,7 @@ BatchResult batch_ccd(Kind kind, std::span<const Query> queries, const Options& 
     in_arena(options, [&] {
       run_source(simd::RawQueries{kind, queries.data()}, queries.size(), kernels.raw, options, 0, batch);
     });
+  sort_hits(batch);
   return batch;
 }
 
@@ -161,6 +171,7 @@ BatchResult mesh_ccd(const MeshView& mesh, const Candidates& candidates, const O
     run_source(vertex_face_source, vertex_face, kernels.vertex_face, options, 0, batch);
     run_source(edge_edge_source, edge_edge, kernels.edge_edge, options, vertex_face, batch);
   });
+  sort_hits(batch);
   return batch;
 }
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -122,6 +123,58 @@ TEST(Scheduler, EarliestToiOnlyCallsWriteNoResults) {
   EXPECT_EQ(earliest.earliest_toi, full.earliest_toi);
   EXPECT_EQ(earliest.counters.hits, full.counters.hits);
   EXPECT_GT(full.counters.hits, 0);  // the cloth scene's step holds contacts
+}
+
+// The hit list is the sparse form of the per-candidate results, in candidate
+// order, for every thread count and mode; alone it writes no results.
+TEST(Scheduler, HitListsAreTheHitsOfTheResultsInOrder) {
+  for (const MeshCase& mesh : mesh_cases()) {
+    for (const Mode mode : {Mode::conservative, Mode::cubic}) {
+      for (const int threads : {1, 2, 8}) {
+        const std::string what = mesh.name + " " + to_string(mode) + " threads " + std::to_string(threads);
+        Options options;
+        options.mode = mode;
+        options.threads = threads;
+        options.hit_list = true;
+        const BatchResult both = mesh_ccd(mesh.view(), mesh.candidates, options);
+        std::vector<Hit> expected;
+        for (std::size_t i = 0; i < both.results.size(); ++i)
+          if (both.results[i].hit) expected.push_back({i, both.results[i].toi, both.results[i].status});
+        ASSERT_EQ(both.hits.size(), expected.size()) << what;
+        EXPECT_EQ(static_cast<std::int64_t>(both.hits.size()), both.counters.hits) << what;
+        for (std::size_t k = 0; k < expected.size(); ++k) {
+          ASSERT_EQ(both.hits[k].candidate, expected[k].candidate) << what;
+          ASSERT_EQ(both.hits[k].toi, expected[k].toi) << what;
+          ASSERT_EQ(both.hits[k].status, expected[k].status) << what;
+        }
+        options.per_candidate_results = false;
+        const BatchResult hits_only = mesh_ccd(mesh.view(), mesh.candidates, options);
+        EXPECT_TRUE(hits_only.results.empty()) << what;
+        ASSERT_EQ(hits_only.hits.size(), expected.size()) << what;
+        for (std::size_t k = 0; k < expected.size(); ++k)
+          ASSERT_EQ(hits_only.hits[k].candidate, expected[k].candidate) << what;
+      }
+    }
+  }
+}
+
+TEST(Scheduler, RawQueryHitListsCountFromZero) {
+  Query hit, miss;
+  for (int k = 0; k < 4; ++k) {
+    miss.points[k] = miss.points[k + 4] = Vec3(10.0 * k, 0, k == 3 ? 1 : 0);
+  }
+  // A vertex falling through the triangle (0,0,0), (1,0,0), (0,1,0) at t = 1/2.
+  hit.points = {Vec3(0.25, 0.25, 1), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0),
+                Vec3(0.25, 0.25, -1), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  const std::vector<Query> queries = {miss, hit, miss, hit};
+  Options options;
+  options.hit_list = true;
+  const BatchResult result = batch_ccd(Kind::vertex_face, queries, options);
+  ASSERT_EQ(result.hits.size(), 2u);
+  EXPECT_EQ(result.hits[0].candidate, 1u);
+  EXPECT_EQ(result.hits[1].candidate, 3u);
+  EXPECT_LE(result.hits[0].toi, 0.5);
+  EXPECT_GT(result.hits[0].toi, 0.5 - 1e-6);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -34,10 +35,21 @@ struct Counters {
   Counters& operator+=(const Counters& other);
 };
 
+// A candidate that hits, as Options::hit_list lists it.
+struct Hit {
+  std::size_t candidate = 0;  // its index in the order of BatchResult::results
+  double toi = 0;
+  Status status = Status::ok;  // invalid_input: a NaN or infinite coordinate (toi 0)
+};
+
 struct BatchResult {
   // One per candidate, in input order (a mesh call: vertex-face candidates
   // first, then edge-edge). Empty when Options::per_candidate_results is false.
   std::vector<QueryResult> results;
+  // The candidates that hit, in increasing candidate order, when
+  // Options::hit_list is set (empty otherwise). Equal to the hits among
+  // `results` whatever the thread count.
+  std::vector<Hit> hits;
   // Earliest TOI over all candidates, +inf when nothing collides (0 when a
   // candidate has a NaN or infinite coordinate: see Status::invalid_input).
   double earliest_toi = std::numeric_limits<double>::infinity();
