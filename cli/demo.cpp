@@ -74,15 +74,21 @@ std::vector<MethodTally> empty_tallies() {
 // ---- what a call pays for ---------------------------------------------------
 
 struct CostVariant {
+  CostVariant(std::string_view what, std::function<void(Options&)> asks, bool into_last = false)
+      : name(what), ask(std::move(asks)), into_last_result(into_last) {}
+
   std::string_view name;
   std::function<void(Options&)> ask;
+  bool into_last_result;  // the call writes into the previous step's BatchResult
   double seconds = 0;
+  BatchResult last;
 };
 
 // Each against the first: a call that asks for everything.
 std::vector<CostVariant> cost_variants() {
   return {
       {"everything: TOI, vf + ee, a result per candidate", [](Options&) {}},
+      {"the same into the last step's BatchResult", [](Options&) {}, true},
       {"hit/no-hit only (need_toi = false)", [](Options& o) { o.need_toi = false; }},
       {"vf only", [](Options& o) { o.edge_edge = false; }},
       {"ee only", [](Options& o) { o.vertex_face = false; }},
@@ -104,7 +110,11 @@ void time_costs(const Workload& workload, int threads, std::vector<CostVariant>&
     options.threads = threads;
     variant.ask(options);
     const auto start = std::chrono::steady_clock::now();
-    workload.run(options);
+    if (variant.into_last_result) {
+      workload.run(options, variant.last);
+    } else {
+      workload.run(options);
+    }
     variant.seconds += seconds_since(start);
   }
 }

@@ -45,10 +45,18 @@ Query Workload::query_at(std::size_t i) const {
 }
 
 BatchResult Workload::run(const Options& options) const {
-  if (const auto* raw = std::get_if<RawWorkload>(&source))
-    return batch_ccd(raw->kind, raw->queries, options);
-  const auto& mesh = std::get<MeshWorkload>(source);
-  return mesh_ccd(mesh.view(), mesh.candidates, options);
+  BatchResult result;
+  run(options, result);
+  return result;
+}
+
+void Workload::run(const Options& options, BatchResult& out) const {
+  if (const auto* raw = std::get_if<RawWorkload>(&source)) {
+    batch_ccd(raw->kind, raw->queries, options, out);
+  } else {
+    const auto& mesh = std::get<MeshWorkload>(source);
+    mesh_ccd(mesh.view(), mesh.candidates, options, out);
+  }
 }
 
 Workload read_workload(const FoundInput& input, const std::optional<Kind>& fallback_kind) {

@@ -39,8 +39,10 @@ struct Workload {
   std::size_t size() const;
   Kind kind_at(std::size_t i) const;
   Query query_at(std::size_t i) const;  // candidate i as a raw query
-  // The engine's own path for the whole list: batch_ccd or mesh_ccd.
+  // The engine's own path for the whole list: batch_ccd or mesh_ccd, into a
+  // new result or into `out`.
   BatchResult run(const Options& options) const;
+  void run(const Options& options, BatchResult& out) const;
 };
 
 // A query file or scene found by find_inputs (run.hpp), read in full; a

@@ -99,6 +99,11 @@ void run_source(const Source& source, std::size_t count, simd::FilterFunction<So
           partial.counters.culled += static_cast<std::int64_t>(range.size() - kept);
           partial.counters.culled_by_sign += static_cast<std::int64_t>(culls.sign);
           partial.counters.culled_by_separation += static_cast<std::int64_t>(culls.separation);
+          // Culled candidates' results, here in parallel (the storage may be
+          // the caller's from an earlier call); survivors' come in the pass below.
+          if (options.per_candidate_results)
+            std::fill(batch.results.begin() + static_cast<std::ptrdiff_t>(offset + range.begin()),
+                      batch.results.begin() + static_cast<std::ptrdiff_t>(offset + range.end()), QueryResult{});
           std::vector<std::size_t>& mine = survivors.local();
           for (std::size_t j = 0; j < kept; ++j) mine.push_back(range.begin() + kept_in_batch[j]);
         },
@@ -143,35 +148,52 @@ std::vector<Isa> available_isas() {
   return isas;
 }
 
-BatchResult batch_ccd(Kind kind, std::span<const Query> queries, const Options& options) {
+// Empties `out` for a call of `count` candidates, keeping its storage.
+void reset(BatchResult& out, std::size_t count, const Options& options) {
+  out.results.resize(options.per_candidate_results ? count : 0);
+  out.hits.clear();
+  out.earliest_toi = std::numeric_limits<double>::infinity();
+  out.counters = {};
+}
+
+void batch_ccd(Kind kind, std::span<const Query> queries, const Options& options, BatchResult& out) {
   const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
-  BatchResult batch;
-  if (options.per_candidate_results) batch.results.resize(queries.size());
+  reset(out, queries.size(), options);
   if (!queries.empty())
     in_arena(options, [&] {
-      run_source(simd::RawQueries{kind, queries.data()}, queries.size(), kernels.raw, options, 0, batch);
+      run_source(simd::RawQueries{kind, queries.data()}, queries.size(), kernels.raw, options, 0, out);
     });
-  sort_hits(batch);
+  sort_hits(out);
+}
+
+BatchResult batch_ccd(Kind kind, std::span<const Query> queries, const Options& options) {
+  BatchResult batch;
+  batch_ccd(kind, queries, options, batch);
   return batch;
 }
 
-BatchResult mesh_ccd(const MeshView& mesh, const Candidates& candidates, const Options& options) {
+void mesh_ccd(const MeshView& mesh, const Candidates& candidates, const Options& options,
+              BatchResult& out) {
   const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
-  BatchResult batch;
   in_arena(options, [&] {
-    check_mesh(mesh, candidates);
+    check_mesh(mesh, candidates);  // before `out` is touched
     const std::size_t vertex_face = options.vertex_face ? candidates.vertex_face.size() : 0;
     const std::size_t edge_edge = options.edge_edge ? candidates.edge_edge.size() : 0;
-    if (options.per_candidate_results) batch.results.resize(vertex_face + edge_edge);
+    reset(out, vertex_face + edge_edge, options);
     const simd::PackedPositions packed(mesh.positions_t0.data(), mesh.positions_t1.data(),
                                       mesh.positions_t0.rows());
     const simd::MeshVertexFace vertex_face_source{packed.view(), mesh.faces.data(), mesh.faces.rows(),
                                                   candidates.vertex_face.data()};
     const simd::MeshEdgeEdge edge_edge_source{packed.view(), candidates.edge_edge.data()};
-    run_source(vertex_face_source, vertex_face, kernels.vertex_face, options, 0, batch);
-    run_source(edge_edge_source, edge_edge, kernels.edge_edge, options, vertex_face, batch);
+    run_source(vertex_face_source, vertex_face, kernels.vertex_face, options, 0, out);
+    run_source(edge_edge_source, edge_edge, kernels.edge_edge, options, vertex_face, out);
   });
-  sort_hits(batch);
+  sort_hits(out);
+}
+
+BatchResult mesh_ccd(const MeshView& mesh, const Candidates& candidates, const Options& options) {
+  BatchResult batch;
+  mesh_ccd(mesh, candidates, options, batch);
   return batch;
 }
 

@@ -158,6 +158,34 @@ TEST(Scheduler, HitListsAreTheHitsOfTheResultsInOrder) {
   }
 }
 
+// A BatchResult passed back in gives what a fresh call gives, whatever it
+// held before; a refused call leaves it as it was.
+TEST(Scheduler, CallsIntoAnEarlierResultGiveWhatFreshCallsGive) {
+  const std::vector<MeshCase> cases = mesh_cases();
+  BatchResult reused;
+  for (int round = 0; round < 2; ++round)
+    for (const MeshCase& mesh : cases) {
+      for (const bool dense : {true, false}) {
+        Options options;
+        options.threads = 2;
+        options.per_candidate_results = dense;
+        options.hit_list = !dense;
+        mesh_ccd(mesh.view(), mesh.candidates, options, reused);
+        const BatchResult fresh = mesh_ccd(mesh.view(), mesh.candidates, options);
+        const std::string what = mesh.name + (dense ? " dense" : " hits");
+        expect_identical(fresh, reused, what);
+        ASSERT_EQ(fresh.hits.size(), reused.hits.size()) << what;
+        for (std::size_t k = 0; k < fresh.hits.size(); ++k)
+          ASSERT_EQ(fresh.hits[k].candidate, reused.hits[k].candidate) << what;
+      }
+    }
+  const BatchResult before = reused;
+  Candidates bad = cases.front().candidates;
+  bad.edge_edge.push_back({0, 1, 2, -1});
+  EXPECT_THROW(mesh_ccd(cases.front().view(), bad, Options{}, reused), std::invalid_argument);
+  expect_identical(before, reused, "after a refused call");
+}
+
 TEST(Scheduler, RawQueryHitListsCountFromZero) {
   Query hit, miss;
   for (int k = 0; k < 4; ++k) {
