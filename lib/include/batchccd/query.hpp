@@ -49,8 +49,10 @@ struct QueryResult {
   // The primitives touch at some t in [0, 1] (as far as Options::mode
   // promises).
   bool hit = false;
-  // Time of impact in [0, 1]: never later than the first contact (a lower
-  // bound), +inf when there is none or when it was not asked for.
+  // Time of impact in [0, 1], +inf when there is none or when it was not
+  // asked for. Conservative and exact modes never report it later than the
+  // first contact (a lower bound); fast and cubic promise nothing of it
+  // (Mode in options.hpp).
   double toi = std::numeric_limits<double>::infinity();
   Status status = Status::ok;
 };
