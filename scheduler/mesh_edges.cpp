@@ -30,8 +30,8 @@ void check_edges(const MeshWithEdgesView& mesh, const EdgeIdCandidates& candidat
 
 // Expands edge ids into the vertex quadruples of Candidates and hands over to
 // the one mesh path, so both entry points share validation and scheduling.
-BatchResult mesh_ccd(const MeshWithEdgesView& mesh, const EdgeIdCandidates& candidates,
-                     const Options& options) {
+void mesh_ccd(const MeshWithEdgesView& mesh, const EdgeIdCandidates& candidates, const Options& options,
+              BatchResult& out) {
   check_edges(mesh, candidates);
   Candidates by_vertex;
   by_vertex.vertex_face.assign(candidates.vertex_face.begin(), candidates.vertex_face.end());
@@ -39,7 +39,14 @@ BatchResult mesh_ccd(const MeshWithEdgesView& mesh, const EdgeIdCandidates& cand
   for (const auto [a, b] : candidates.edge_edge)
     by_vertex.edge_edge.push_back(
         {mesh.edges(a, 0), mesh.edges(a, 1), mesh.edges(b, 0), mesh.edges(b, 1)});
-  return mesh_ccd(MeshView{mesh.positions_t0, mesh.positions_t1, mesh.faces}, by_vertex, options);
+  mesh_ccd(MeshView{mesh.positions_t0, mesh.positions_t1, mesh.faces}, by_vertex, options, out);
+}
+
+BatchResult mesh_ccd(const MeshWithEdgesView& mesh, const EdgeIdCandidates& candidates,
+                     const Options& options) {
+  BatchResult result;
+  mesh_ccd(mesh, candidates, options, result);
+  return result;
 }
 
 }  // namespace batchccd

@@ -206,6 +206,17 @@ TEST(MeshEdges, MatchesTheVertexIdCall) {
   EXPECT_GT(by_edge_id.counters.hits, 0);
   EXPECT_LE(by_edge_id.earliest_toi, 0.5);
   EXPECT_GE(by_edge_id.earliest_toi, 0.5 - kToiSlack);
+
+  // Into an earlier result (here one of another size): the same answers.
+  batchccd::BatchResult reused = expected;
+  reused.results.resize(1);
+  batchccd::mesh_ccd(mesh.view(), {vertex_face_pairs, edge_edge_pairs}, {}, reused);
+  ASSERT_EQ(reused.results.size(), by_edge_id.results.size());
+  for (std::size_t i = 0; i < reused.results.size(); ++i) {
+    EXPECT_EQ(reused.results[i].hit, by_edge_id.results[i].hit) << i;
+    EXPECT_EQ(reused.results[i].toi, by_edge_id.results[i].toi) << i;
+  }
+  EXPECT_EQ(reused.counters.hits, by_edge_id.counters.hits);
 }
 
 TEST(MeshEdges, HonoursOptions) {

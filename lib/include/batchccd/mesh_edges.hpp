@@ -40,5 +40,8 @@ struct EdgeIdCandidates {
 // face ids out of range). Nothing is evaluated then.
 BatchResult mesh_ccd(const MeshWithEdgesView& mesh, const EdgeIdCandidates& candidates,
                      const Options& options = {});
+// The same into `out`, keeping its storage (as the overloads of batch.hpp).
+void mesh_ccd(const MeshWithEdgesView& mesh, const EdgeIdCandidates& candidates, const Options& options,
+              BatchResult& out);
 
 }  // namespace batchccd
