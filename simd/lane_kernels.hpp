@@ -82,10 +82,6 @@ struct Gather {
     }
   }
 
-  // The processor can transpose rows into lanes (AVX2, AVX-512); without,
-  // coordinates are gathered.
-  static constexpr bool transposes =
-      std::is_base_of_v<xsimd::avx512f, Arch> || std::is_base_of_v<xsimd::avx2, Arch>;
   using Rows = const double* [L::size];
 
   static void from(const RawQueries& raw, const Candidates& candidate, Vector (&x)[4][2]) {
@@ -94,7 +90,7 @@ struct Gather {
     Double coordinate[doubles_per_query];
     // Consecutive queries (indices only ever increase) lie in one block of
     // rows: loads and transposes. Otherwise gathers.
-    if (transposes && candidate[L::size - 1] - candidate[0] == static_cast<std::int64_t>(L::size - 1)) {
+    if (candidate[L::size - 1] - candidate[0] == static_cast<std::int64_t>(L::size - 1)) {
       for (std::size_t block = 0; block < doubles_per_query; block += L::size) {
         Rows rows;
         for (std::size_t j = 0; j < L::size; ++j) rows[j] = data + (candidate[0] + j) * doubles_per_query + block;
@@ -123,24 +119,17 @@ struct Gather {
     const double* packed = mesh.positions.rows;
     for (int k = 0; k < 4; ++k) {
       Double coordinate[kRowDoubles];
-      if constexpr (transposes) {
-        for (std::size_t part = 0; part < kRowDoubles; part += L::size) {
-          Rows rows;
-          for (std::size_t j = 0; j < L::size; ++j) rows[j] = packed + kRowDoubles * ids[k][j] + part;
-          transpose(rows, coordinate + part);
-        }
-      } else {
-        alignas(64) std::int64_t offset[L::size];
-        for (std::size_t j = 0; j < L::size; ++j) offset[j] = kRowDoubles * ids[k][j];
-        const Index index = Index::load_aligned(offset);
-        for (int c = 0; c < 6; ++c) coordinate[c] = gather(packed + c, index);
+      for (std::size_t part = 0; part < 6; part += L::size) {  // the row's six coordinates
+        Rows rows;
+        for (std::size_t j = 0; j < L::size; ++j) rows[j] = packed + kRowDoubles * ids[k][j] + part;
+        transpose(rows, coordinate + part);
       }
       x[k][0] = {coordinate[0], coordinate[1], coordinate[2]};
       x[k][1] = {coordinate[3], coordinate[4], coordinate[5]};
     }
   }
 
-  // out[c] lane j = rows[j][c] for c below the lane count.
+  // out[c] lane j = rows[j][c] for c below the lane count (8, 4 or 2).
   static void transpose(const Rows& rows, Double* out) {
     if constexpr (std::is_base_of_v<xsimd::avx512f, Arch>) {
       __m512d r[8], t[8], u[8];
@@ -167,6 +156,10 @@ struct Gather {
       out[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
       out[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
       out[3] = _mm256_permute2f128_pd(t1, t3, 0x31);
+    } else {
+      const __m128d r0 = _mm_loadu_pd(rows[0]), r1 = _mm_loadu_pd(rows[1]);
+      out[0] = _mm_unpacklo_pd(r0, r1);
+      out[1] = _mm_unpackhi_pd(r0, r1);
     }
   }
 };
