@@ -180,8 +180,12 @@ void mesh_ccd(const MeshView& mesh, const Candidates& candidates, const Options&
     const std::size_t vertex_face = options.vertex_face ? candidates.vertex_face.size() : 0;
     const std::size_t edge_edge = options.edge_edge ? candidates.edge_edge.size() : 0;
     reset(out, vertex_face + edge_edge, options);
-    const simd::PackedPositions packed(mesh.positions_t0.data(), mesh.positions_t1.data(),
-                                      mesh.positions_t0.rows());
+    simd::PackedPositions packed(mesh.positions_t0.rows());
+    tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, mesh.positions_t0.rows(), 1 << 14),
+                      [&](const tbb::blocked_range<std::int64_t>& rows) {
+                        packed.pack(mesh.positions_t0.data(), mesh.positions_t1.data(), rows.begin(),
+                                    rows.end());
+                      });
     const simd::MeshVertexFace vertex_face_source{packed.view(), mesh.faces.data(), mesh.faces.rows(),
                                                   candidates.vertex_face.data()};
     const simd::MeshEdgeEdge edge_edge_source{packed.view(), candidates.edge_edge.data()};

@@ -35,26 +35,37 @@ struct MeshPositions {
 // the work is O(candidates).
 class PackedPositions {
  public:
-  PackedPositions(const double* t0, const double* t1, std::int64_t vertices)
-      : rows_(static_cast<double*>(::operator new[](
+  // Room for `vertices` rows; pack() fills them.
+  explicit PackedPositions(std::int64_t vertices)
+      : vertices_(vertices),
+        rows_(static_cast<double*>(::operator new[](
                   sizeof(double) * kRowDoubles * static_cast<std::size_t>(std::max<std::int64_t>(vertices, 1)),
                   std::align_val_t(64))),
-              Free{}) {
-    for (std::int64_t v = 0; v < vertices; ++v) {
+              Free{}) {}
+  // All rows at once.
+  PackedPositions(const double* t0, const double* t1, std::int64_t vertices) : PackedPositions(vertices) {
+    pack(t0, t1, 0, vertices);
+  }
+
+  // Rows [begin, end): callers may fill disjoint ranges in parallel.
+  void pack(const double* t0, const double* t1, std::int64_t begin, std::int64_t end) {
+    for (std::int64_t v = begin; v < end; ++v) {
       double* row = rows_.get() + kRowDoubles * v;
       for (int c = 0; c < 3; ++c) {
-        row[c] = t0[v + c * vertices];
-        row[c + 3] = t1[v + c * vertices];
+        row[c] = t0[v + c * vertices_];
+        row[c + 3] = t1[v + c * vertices_];
       }
       row[6] = row[7] = 0;
     }
   }
+
   MeshPositions view() const { return {rows_.get()}; }
 
  private:
   struct Free {
     void operator()(double* p) const { ::operator delete[](p, std::align_val_t(64)); }
   };
+  std::int64_t vertices_;
   std::unique_ptr<double[], Free> rows_;
 };
 
