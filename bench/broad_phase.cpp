@@ -330,4 +330,25 @@ Candidates swept_box_candidates(const MeshView& mesh, double margin) {
   return candidates;
 }
 
+namespace {
+
+// Vertices ids[0..3] at t0, then at t1.
+Query query_of(const MeshView& mesh, const std::array<int, 4>& ids) {
+  Query query;
+  for (std::size_t k = 0; k < 4; ++k) {
+    query.points[k] = mesh.positions_t0.row(ids[k]).transpose();
+    query.points[k + 4] = mesh.positions_t1.row(ids[k]).transpose();
+  }
+  return query;
+}
+
+}  // namespace
+
+Query vertex_face_query(const MeshView& mesh, const std::array<int, 2>& pair) {
+  const auto [vertex, face] = pair;
+  return query_of(mesh, {vertex, mesh.faces(face, 0), mesh.faces(face, 1), mesh.faces(face, 2)});
+}
+
+Query edge_edge_query(const MeshView& mesh, const std::array<int, 4>& pair) { return query_of(mesh, pair); }
+
 }  // namespace batchccd::scenes

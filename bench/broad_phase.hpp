@@ -30,4 +30,9 @@ double mean_edge_length(const MeshView& mesh);
 // Runs in parallel in the caller's oneTBB arena.
 Candidates swept_box_candidates(const MeshView& mesh, double margin);
 
+// A candidate as the raw query batch_ccd takes (points in Query's order), for
+// peers and benchmarks that work on raw queries.
+Query vertex_face_query(const MeshView& mesh, const std::array<int, 2>& pair);
+Query edge_edge_query(const MeshView& mesh, const std::array<int, 4>& pair);
+
 }  // namespace batchccd::scenes

@@ -39,14 +39,8 @@ const Workload& workload() {
     w.mesh = scenes::cloth_scene({.resolution = 96});
     const MeshView view = w.mesh.view();
     w.candidates = scenes::swept_box_candidates(view, scenes::mean_edge_length(view));
-    for (const auto& e : w.candidates.edge_edge) {
-      Query q;
-      for (int k = 0; k < 4; ++k) {
-        q.points[k] = view.positions_t0.row(e[k]).transpose();
-        q.points[k + 4] = view.positions_t1.row(e[k]).transpose();
-      }
-      w.edge_edge_queries.push_back(q);
-    }
+    for (const auto& pair : w.candidates.edge_edge)
+      w.edge_edge_queries.push_back(scenes::edge_edge_query(view, pair));
     return w;
   }();
   return data;

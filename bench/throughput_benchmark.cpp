@@ -33,16 +33,8 @@ const ClothCandidates& cloth() {
     ClothCandidates d;
     d.mesh = scenes::cloth_scene({});
     d.candidates = scenes::swept_box_candidates(d.mesh.view(), scenes::mean_edge_length(d.mesh.view()));
-    const MeshView view = d.mesh.view();
-    for (const auto& [vertex, face] : d.candidates.vertex_face) {
-      Query q;
-      const int ids[4] = {vertex, view.faces(face, 0), view.faces(face, 1), view.faces(face, 2)};
-      for (int k = 0; k < 4; ++k) {
-        q.points[k] = view.positions_t0.row(ids[k]).transpose();
-        q.points[k + 4] = view.positions_t1.row(ids[k]).transpose();
-      }
-      d.vertex_face_queries.push_back(q);
-    }
+    for (const auto& pair : d.candidates.vertex_face)
+      d.vertex_face_queries.push_back(scenes::vertex_face_query(d.mesh.view(), pair));
     return d;
   }();
   return data;

@@ -52,13 +52,6 @@ std::vector<FoundInput> find_inputs_in_directory(const fs::path& root,
   return found;
 }
 
-Kind kind_of_query_file(const fs::path& file, const std::optional<Kind>& fallback_kind) {
-  if (auto named = kind_from_path(file)) return *named;
-  if (fallback_kind) return *fallback_kind;
-  throw InputError(file.string(), 0,
-                   "the path names no kind (vertex-face/vf or edge-edge/ee): use --kind");
-}
-
 int threads_asked(const Options& options) {
   if (options.threads > 0) return options.threads;
   return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -189,6 +182,13 @@ void run_guarded(const fs::path& input, RunOutcome& outcome, std::ostream& error
 }
 
 }  // namespace
+
+Kind kind_of_query_file(const fs::path& file, const std::optional<Kind>& fallback_kind) {
+  if (auto named = kind_from_path(file)) return *named;
+  if (fallback_kind) return *fallback_kind;
+  throw InputError(file.string(), 0,
+                   "the path names no kind (vertex-face/vf or edge-edge/ee): use --kind");
+}
 
 std::vector<FoundInput> find_inputs(const fs::path& input, const std::optional<Kind>& fallback_kind,
                                     std::ostream& notes) {

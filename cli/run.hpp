@@ -75,6 +75,10 @@ struct FoundInput {
 std::vector<FoundInput> find_inputs(const std::filesystem::path& input,
                                     const std::optional<Kind>& fallback_kind, std::ostream& notes);
 
+// The kind of a query file: the one its path names, else `fallback_kind`.
+// Throws InputError when there is neither.
+Kind kind_of_query_file(const std::filesystem::path& file, const std::optional<Kind>& fallback_kind);
+
 // Runs every input; an input that fails is reported on `errors` (one line
 // naming the file and, where there is one, the line) and the rest still run.
 RunOutcome run_inputs(const RunSettings& settings, std::ostream& errors);

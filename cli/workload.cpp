@@ -1,31 +1,9 @@
 #include "workload.hpp"
 
-#include <array>
-
 #include "batchccd/io.hpp"
+#include "broad_phase.hpp"
 
 namespace batchccd::cli {
-namespace {
-
-// Candidate i of a mesh as a raw query, points in the order of Query.
-Query mesh_query(const MeshWorkload& mesh, std::size_t i) {
-  const std::size_t vertex_face = mesh.candidates.vertex_face.size();
-  std::array<int, 4> ids;
-  if (i < vertex_face) {
-    const auto [vertex, face] = mesh.candidates.vertex_face[i];
-    ids = {vertex, mesh.faces(face, 0), mesh.faces(face, 1), mesh.faces(face, 2)};
-  } else {
-    ids = mesh.candidates.edge_edge[i - vertex_face];
-  }
-  Query query;
-  for (int k = 0; k < 4; ++k) {
-    query.points[k] = mesh.positions_t0.row(ids[k]).transpose();
-    query.points[k + 4] = mesh.positions_t1.row(ids[k]).transpose();
-  }
-  return query;
-}
-
-}  // namespace
 
 std::size_t Workload::size() const {
   if (const auto* raw = std::get_if<RawWorkload>(&source)) return raw->queries.size();
@@ -41,7 +19,10 @@ Kind Workload::kind_at(std::size_t i) const {
 
 Query Workload::query_at(std::size_t i) const {
   if (const auto* raw = std::get_if<RawWorkload>(&source)) return raw->queries[i];
-  return mesh_query(std::get<MeshWorkload>(source), i);
+  const auto& mesh = std::get<MeshWorkload>(source);
+  const std::size_t vertex_face = mesh.candidates.vertex_face.size();
+  return i < vertex_face ? scenes::vertex_face_query(mesh.view(), mesh.candidates.vertex_face[i])
+                         : scenes::edge_edge_query(mesh.view(), mesh.candidates.edge_edge[i - vertex_face]);
 }
 
 BatchResult Workload::run(const Options& options) const {
@@ -63,12 +44,9 @@ Workload read_workload(const FoundInput& input, const std::optional<Kind>& fallb
   Workload workload;
   workload.name = input.path.string();
   if (!input.is_scene) {
-    const std::optional<Kind> kind = kind_from_path(input.path) ? kind_from_path(input.path) : fallback_kind;
-    if (!kind)
-      throw InputError(input.path.string(), 0,
-                       "the path names no kind (vertex-face/vf or edge-edge/ee): use --kind");
-    QueryFile file = read_query_csv(input.path, *kind);
-    workload.source = RawWorkload{*kind, std::move(file.queries)};
+    const Kind kind = kind_of_query_file(input.path, fallback_kind);
+    QueryFile file = read_query_csv(input.path, kind);
+    workload.source = RawWorkload{kind, std::move(file.queries)};
     workload.truth = std::move(file.truth);
     return workload;
   }

@@ -58,9 +58,9 @@ void in_arena(const Options& options, const Work& work) {
 
 // Evaluates candidates [0, count) of a source, in the current arena: the
 // lane filter over batches, then the scalar path for every survivor, writing
-// results[offset + i] when per-candidate results are asked for. Results land at fixed places and the
-// reductions (sums, minimum) do not depend on order, so the outcome is the
-// same for any thread count.
+// results[offset + i] when per-candidate results are asked for. Results land
+// at fixed places and the reductions (sums, minimum) do not depend on order,
+// so the outcome is the same for any thread count.
 template <class Source>
 void run_source(const Source& source, std::size_t count, simd::FilterFunction<Source> filter,
                 const Options& options, std::size_t offset, BatchResult& batch) {

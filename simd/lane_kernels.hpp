@@ -220,7 +220,7 @@ template <class Arch, LaneFilter filter, class Source>
   using Mask = typename L::Mask;
   using Vector = typename L::Vector;
 
-  // x[k][tau]: DESIGN.md's x_{k+1} at t = tau, gathered.
+  // x[k][tau]: DESIGN.md's x_{k+1} at t = tau, loaded.
   Vector x[4][2];
   Gather<Arch>::from(source, candidate, x);
 
