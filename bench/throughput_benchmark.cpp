@@ -9,6 +9,7 @@
 // separate. Ratios are only meaningful within one run.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <numeric>
@@ -81,7 +82,17 @@ void set_counters(benchmark::State& state, std::size_t candidates, double bytes_
   state.counters["survivor_fraction"] = static_cast<double>(survivors) / static_cast<double>(candidates);
 }
 
-// The certified sign filter over raw queries (192 bytes each).
+// filter(begin, end) over [0, count) in the scheduler's batches, as a
+// worker runs it; returns the survivors of all.
+template <class Filter>
+std::size_t in_batches(std::size_t count, const Filter& filter) {
+  std::size_t kept = 0;
+  for (std::size_t begin = 0; begin < count; begin += simd::kFilterBatch)
+    kept += filter(begin, std::min(count, begin + simd::kFilterBatch));
+  return kept;
+}
+
+// The certified filters over raw queries (192 bytes each).
 void filter_raw(benchmark::State& state, Isa isa, const std::vector<Query>& queries) {
   const simd::FilterKernels* kernels = kernels_for(state, isa);
   if (!kernels) return;
@@ -90,7 +101,9 @@ void filter_raw(benchmark::State& state, Isa isa, const std::vector<Query>& quer
   std::size_t kept = 0;
   for (auto _ : state) {
     simd::FilterCounts counts;
-    kept = kernels->raw(source, 0, queries.size(), settings(state), survivors.data(), counts);
+    kept = in_batches(queries.size(), [&](std::size_t begin, std::size_t end) {
+      return kernels->raw(source, begin, end, settings(state), survivors.data(), counts);
+    });
     benchmark::DoNotOptimize(kept);
   }
   set_counters(state, queries.size(), sizeof(Query), kept);
@@ -124,13 +137,14 @@ void filter_mesh(benchmark::State& state, Isa isa, Kind kind) {
   std::size_t kept = 0;
   simd::FilterCounts counts;
   for (auto _ : state) {
-    if (kind == Kind::vertex_face)
-      kept = kernels->vertex_face({positions, view.faces.data(), view.faces.rows(),
-                                   data.candidates.vertex_face.data()},
-                                  0, count, settings(state), survivors.data(), counts);
-    else
-      kept = kernels->edge_edge({positions, data.candidates.edge_edge.data()}, 0, count,
-                                settings(state), survivors.data(), counts);
+    kept = in_batches(count, [&](std::size_t begin, std::size_t end) {
+      return kind == Kind::vertex_face
+                 ? kernels->vertex_face({positions, view.faces.data(), view.faces.rows(),
+                                         data.candidates.vertex_face.data()},
+                                        begin, end, settings(state), survivors.data(), counts)
+                 : kernels->edge_edge({positions, data.candidates.edge_edge.data()}, begin, end,
+                                      settings(state), survivors.data(), counts);
+    });
     benchmark::DoNotOptimize(kept);
   }
   set_counters(state, count, kind == Kind::vertex_face ? 8.0 : 16.0, kept);

@@ -27,9 +27,6 @@ struct Partial {
   std::vector<Hit> hits;  // Options::hit_list, in the order found
 };
 
-// Candidates a worker filters at once: the survivor list stays in cache and
-// the scheduler has enough pieces to balance two or more threads.
-constexpr std::size_t kBatchSize = 2048;
 // Survivors a worker solves at once: their costs vary by orders of
 // magnitude and cluster where the meshes touch, so small pieces balance.
 constexpr std::size_t kSolverGrain = 8;
@@ -75,7 +72,7 @@ void run_source(const Source& source, std::size_t count, simd::FilterFunction<So
     if (options.hit_list && e.result.hit) partial.hits.push_back({offset + i, e.result.toi, e.result.status});
   };
   if (!filtered) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kBatchSize),
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, simd::kFilterBatch),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         Partial& partial = partials.local();
                         partial.counters.candidates += static_cast<std::int64_t>(range.size());
@@ -87,10 +84,10 @@ void run_source(const Source& source, std::size_t count, simd::FilterFunction<So
     tbb::enumerable_thread_specific<std::vector<std::uint32_t>> batch_survivors;
     tbb::enumerable_thread_specific<std::vector<std::size_t>> survivors;
     tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, count, kBatchSize),
+        tbb::blocked_range<std::size_t>(0, count, simd::kFilterBatch),
         [&](const tbb::blocked_range<std::size_t>& range) {
           std::vector<std::uint32_t>& kept_in_batch = batch_survivors.local();
-          if (kept_in_batch.size() < range.size()) kept_in_batch.resize(std::max(range.size(), kBatchSize));
+          if (kept_in_batch.size() < range.size()) kept_in_batch.resize(std::max(range.size(), simd::kFilterBatch));
           simd::FilterCounts culls;
           const std::size_t kept =
               filter(source, range.begin(), range.end(), settings, kept_in_batch.data(), culls);

@@ -17,9 +17,7 @@ std::size_t filter_range_scalar(const Source& source, std::size_t begin, std::si
                                 std::uint32_t* survivors, FilterCounts& counts) {
   std::size_t kept = 0;
   for (std::size_t i = begin; i < end; ++i) {
-    const reference::ScaledQuery scaled = reference::scale_query(source.kind, query_at(source, i));
-    reference::FilterVerdict verdict;
-    if (scaled.finite && !scaled.coincident) verdict = reference::run_filters(source.kind, scaled, settings);
+    const reference::FilterVerdict verdict = reference::run_filters(source.kind, query_at(source, i), settings);
     counts.sign += verdict.sign;
     counts.separation += verdict.separation;
     if (!verdict.culled()) survivors[kept++] = static_cast<std::uint32_t>(i - begin);

@@ -18,6 +18,12 @@ struct FilterCounts {
   std::size_t separation = 0;
 };
 
+// Candidates a worker filters at once (the scheduler's batches): the second
+// filter revisits the first one's survivors while they are still in cache,
+// the survivor list stays small, and there are enough pieces to balance two
+// or more threads.
+inline constexpr std::size_t kFilterBatch = 2048;
+
 // Writes, in increasing order, the indices i - begin of the candidates in
 // [begin, end) that the filters cannot cull; returns how many, and adds
 // each filter's culls to `counts`.

@@ -3,8 +3,8 @@
 // The lane filter, written once over xsimd's batch type and instantiated per
 // instruction set by the kernel_*.cpp files (each compiled with its own
 // flags). It mirrors the scalar reference path operation for operation —
-// reference::scale_query, then reference::sign_filter_culls — so both make
-// the same cull decision bit for bit (tests/test_simd.cpp holds them
+// reference::run_filters, its frames and filters — so both make the same
+// cull decision bit for bit (tests/test_simd.cpp holds them
 // together). Include only from those translation units.
 
 #include <algorithm>
@@ -83,6 +83,7 @@ struct Gather {
   }
 
   using Rows = const double* [L::size];
+  static constexpr std::size_t kPrefetchQueries = 32;  // 6 KB
 
   static void from(const RawQueries& raw, const Candidates& candidate, Vector (&x)[4][2]) {
     const double* data = raw.queries[0].points[0].data();
@@ -91,6 +92,15 @@ struct Gather {
     // Consecutive queries (indices only ever increase) lie in one block of
     // rows: loads and transposes. Otherwise gathers.
     if (candidate[L::size - 1] - candidate[0] == static_cast<std::int64_t>(L::size - 1)) {
+      // Streamed queries: ask for those kPrefetchQueries ahead now, so their
+      // cache lines arrive while these compute (the hardware's prefetcher
+      // alone left half the read bandwidth unused). An address, never
+      // dereferenced: past the end of the queries it is harmless.
+      const std::uintptr_t ahead =
+          reinterpret_cast<std::uintptr_t>(data + candidate[0] * doubles_per_query) +
+          kPrefetchQueries * doubles_per_query * sizeof(double);
+      for (std::size_t line = 0; line < L::size * doubles_per_query * sizeof(double); line += 64)
+        _mm_prefetch(reinterpret_cast<const char*>(ahead + line), _MM_HINT_T0);
       for (std::size_t block = 0; block < doubles_per_query; block += L::size) {
         Rows rows;
         for (std::size_t j = 0; j < L::size; ++j) rows[j] = data + (candidate[0] + j) * doubles_per_query + block;
@@ -164,15 +174,15 @@ struct Gather {
   }
 };
 
-// op over all n values as a balanced tree: a chain of n - 1 dependent
-// operations would be the kernel's critical path. Overwrites `values`.
-template <class T, std::size_t n, class Op>
-T pairwise(T (&values)[n], Op op) {
-  for (std::size_t width = n; width > 1; width = (width + 1) / 2) {
-    for (std::size_t i = 0; i < width / 2; ++i) values[i] = op(values[2 * i], values[2 * i + 1]);
-    if (width % 2 == 1) values[width / 2] = values[width - 1];
+// op over values[0..n) as a balanced tree, unrolled at compile time: a
+// chain of n - 1 dependent operations would be the kernel's critical path.
+template <std::size_t n, class T, class Op>
+[[gnu::always_inline]] inline T pairwise(const T* values, Op op) {
+  if constexpr (n == 1) {
+    return values[0];
+  } else {
+    return op(pairwise<n / 2>(values, op), pairwise<n - n / 2>(values + n / 2, op));
   }
-  return values[0];
 }
 
 // Bit k set where lane k of the mask is true.
@@ -205,99 +215,138 @@ std::size_t compress(std::uint32_t keep, const std::uint32_t* values, std::uint3
   }
 }
 
-enum class LaneFilter { sign, separation };
+// Magnitudes as bit patterns (reference::largest_magnitude): for
+// non-negative doubles the orders agree, and a NaN or an infinity shows as
+// a non-finite maximum. One integer max a value.
+template <class Arch>
+struct MagnitudeBits {
+  using L = Lanes<Arch>;
+  using Index = typename L::Index;
+  using Double = typename L::Double;
+  static Index of(const Double& x) { return xsimd::bitwise_cast<Index>(x) & Index(0x7fffffffffffffffll); }
+  static Index largest(const typename L::Vector& v) {
+    return xsimd::max(xsimd::max(of(v.x), of(v.y)), of(v.z));
+  }
+};
 
-// One filter over the candidates of `candidate`, `count` (<= lane count) of
-// them in use: bit k set when lane k is certainly (or, uncertified, plainly)
-// free of contact. Lanes past count are never culled.
-template <class Arch, LaneFilter filter, class Source>
-[[gnu::flatten]] std::uint32_t culled_lanes(const Source& source,
-                                            const typename Gather<Arch>::Candidates& candidate,
-                                            std::size_t count, const reference::FilterSettings& settings) {
-  const bool certified = settings.certified;
+// reference::scale_query, lane by lane, from loaded positions.
+template <class Arch>
+struct ScaledFrame {
   using L = Lanes<Arch>;
   using Double = typename L::Double;
   using Mask = typename L::Mask;
-  using Vector = typename L::Vector;
-
-  // x[k][tau]: DESIGN.md's x_{k+1} at t = tau, loaded.
-  Vector x[4][2];
-  Gather<Arch>::from(source, candidate, x);
-
-  // The largest magnitude as the largest bit pattern of |x| (the orders
-  // agree for non-negative doubles), which also makes a NaN or infinite
-  // coordinate show as a non-finite maximum: one integer max a coordinate.
   using Index = typename L::Index;
-  Index magnitude_bits[24];
-  for (int j = 0; j < 8; ++j) {
-    const Vector& p = (&x[0][0])[j];
-    const Double coordinates[3] = {p.x, p.y, p.z};
-    for (int c = 0; c < 3; ++c)
-      magnitude_bits[3 * j + c] =
-          xsimd::bitwise_cast<Index>(coordinates[c]) & Index(0x7fffffffffffffffll);
-  }
-  const Double largest = xsimd::bitwise_cast<Double>(
-      pairwise(magnitude_bits, [](Index a, Index b) { return xsimd::max(a, b); }));
-  const Mask finite = largest <= Double(std::numeric_limits<double>::max());
-  // reference::scale_query: inputs near overflow quartered first. That is
-  // rare, so a group of lanes without one skips the multiplications.
-  const Mask huge = largest >= Double(reference::kHugeInput);
-  if (xsimd::any(huge)) {
-    const Double factor = xsimd::select(huge, Double(0.25), Double(1.0));
-    for (auto& point : x)
-      for (Vector& p : point) p = {p.x * factor, p.y * factor, p.z * factor};
-  }
+  using Vector = typename L::Vector;
+  using Bits = MagnitudeBits<Arch>;
+
   Vector relative[3][2];
-  Double difference_magnitude[18];
-  for (int tau = 0; tau < 2; ++tau)
-    for (int i = 0; i < 3; ++i) {
-      const Vector d = x[i + 1][tau] - x[0][tau];
-      relative[i][tau] = d;
-      Double* m = difference_magnitude + 3 * (2 * i + tau);
-      m[0] = xsimd::abs(d.x), m[1] = xsimd::abs(d.y), m[2] = xsimd::abs(d.z);
-    }
-  const Double largest_difference =
-      pairwise(difference_magnitude, [](Double a, Double b) { return xsimd::max(a, b); });
-  const Mask distinct = largest_difference > Double(0.0);
-  const auto scale = L::inverse_power_of_two(xsimd::select(distinct, largest_difference, Double(1.0)));
-  scale.scale(&relative[0][0], 6);
+  Double absolute_error;
+  Mask evaluable;  // finite and not coincident: the filters may cull
 
-  // ScaledQuery::absolute_error: a quartered input's underflow floor (twice
-  // 2^-1074), scaled with the differences, plus the scaling's own.
-  const Double absolute_error =
-      xsimd::select(huge, scale.apply(Double(0x1p-1073)), Double(0.0)) + Double(0x1p-1074);
-  const Mask evaluable = finite & distinct;
-  const std::uint32_t lanes_in_use = (1u << count) - 1;
-
-  if constexpr (filter == LaneFilter::sign) {
-    reference::BernsteinCubic<Double> cubic =
-        reference::bernstein_cubic(relative[0][0], relative[0][1], relative[1][0],
-                                   relative[1][1], relative[2][0], relative[2][1]);
-    Double relative_error(0.0), floor(0.0), half_relative_error(0.0), half_floor(0.0);
-    if (certified) {
-      reference::bernstein_magnitude_bounds(cubic, relative[0][0], relative[0][1], relative[1][0],
-                                            relative[1][1], relative[2][0], relative[2][1]);
-      // reference::coefficient_error and half_coefficient_error, lane by lane.
-      const reference::ErrorModel whole = reference::coefficient_error(0.0);
-      const reference::ErrorModel half = reference::half_coefficient_error(whole);
-      relative_error = Double(whole.relative);
-      floor = Double(256.0) * absolute_error + Double(reference::kUnderflowFloor);
-      half_relative_error = Double(half.relative);
-      half_floor = Double(8.0) * floor;
-    } else {
-      for (Double& m : cubic.magnitude) m = Double(0.0);
+  explicit ScaledFrame(Vector (&x)[4][2]) {
+    Index magnitude[24];
+    for (int j = 0; j < 8; ++j) {
+      const Vector& p = (&x[0][0])[j];
+      magnitude[3 * j] = Bits::of(p.x), magnitude[3 * j + 1] = Bits::of(p.y), magnitude[3 * j + 2] = Bits::of(p.z);
     }
-    const Mask culled = reference::sign_filter_culls(cubic, relative_error, floor, half_relative_error,
-                                                     half_floor, settings.subdivide);
-    return lane_bits<Arch>(culled & evaluable) & lanes_in_use;
-  } else {
-    // reference::separation_error, lane by lane.
-    const reference::SeparationErrorModel error = reference::separation_error(0.0, certified);
-    const Mask enabled = certified ? Mask(absolute_error <= Double(0x1p-900)) : Mask(true);
-    const Mask culled = reference::separation_filter_culls(source.kind, relative,
-                                                           Double(error.relative), Double(error.floor));
-    return lane_bits<Arch>(culled & enabled & evaluable) & lanes_in_use;
+    const auto max = [](const auto& a, const auto& b) { return xsimd::max(a, b); };
+    const Double largest = xsimd::bitwise_cast<Double>(pairwise<24>(magnitude, max));
+    const Mask finite = largest <= Double(std::numeric_limits<double>::max());
+    // Inputs near overflow quartered first. That is rare, so a group of
+    // lanes without one skips the multiplications.
+    const Mask huge = largest >= Double(reference::kHugeInput);
+    if (xsimd::any(huge)) {
+      const Double factor = xsimd::select(huge, Double(0.25), Double(1.0));
+      for (auto& point : x)
+        for (Vector& p : point) p = {p.x * factor, p.y * factor, p.z * factor};
+    }
+    Double difference[18];
+    for (int tau = 0; tau < 2; ++tau)
+      for (int i = 0; i < 3; ++i) {
+        const Vector d = x[i + 1][tau] - x[0][tau];
+        relative[i][tau] = d;
+        Double* m = difference + 3 * (2 * i + tau);
+        m[0] = xsimd::abs(d.x), m[1] = xsimd::abs(d.y), m[2] = xsimd::abs(d.z);
+      }
+    const Double largest_difference = pairwise<18>(difference, max);
+    const Mask distinct = largest_difference > Double(0.0);
+    const auto scale = L::inverse_power_of_two(xsimd::select(distinct, largest_difference, Double(1.0)));
+    scale.scale(&relative[0][0], 6);
+    // ScaledQuery::absolute_error: a quartered input's underflow floor
+    // (twice 2^-1074), scaled with the differences, plus the scaling's own.
+    absolute_error = xsimd::select(huge, scale.apply(Double(0x1p-1073)), Double(0.0)) + Double(0x1p-1074);
+    evaluable = finite & distinct;
   }
+};
+
+// The sign filter over the candidates of `candidate`, `count` (<= lane
+// count) of them in use: bit k set when lane k is certainly (or,
+// uncertified, plainly) free of contact. Lanes past count are never culled.
+// Frames as in reference::run_filters: direct where the differences lie in
+// its window, scaled elsewhere (rare, so only groups with such a lane pay).
+template <class Arch, class Source>
+[[gnu::flatten]] std::uint32_t sign_culled_lanes(const Source& source,
+                                                 const typename Gather<Arch>::Candidates& candidate,
+                                                 std::size_t count, const reference::FilterSettings& settings) {
+  using L = Lanes<Arch>;
+  using Double = typename L::Double;
+  using Mask = typename L::Mask;
+  using Index = typename L::Index;
+  using Vector = typename L::Vector;
+  using Bits = MagnitudeBits<Arch>;
+
+  Vector x[4][2];  // DESIGN.md's x_{k+1} at t = tau
+  Gather<Arch>::from(source, candidate, x);
+  Vector relative[3][2];
+  Double largest[3][2];
+  Index largest_bits[6];
+  for (int i = 0; i < 3; ++i)
+    for (int tau = 0; tau < 2; ++tau) {
+      relative[i][tau] = x[i + 1][tau] - x[0][tau];
+      largest_bits[2 * i + tau] = Bits::largest(relative[i][tau]);
+      largest[i][tau] = xsimd::bitwise_cast<Double>(largest_bits[2 * i + tau]);
+    }
+  const Double overall = xsimd::bitwise_cast<Double>(
+      pairwise<6>(largest_bits, [](const Index& a, const Index& b) { return xsimd::max(a, b); }));
+  const Mask direct = (overall >= Double(reference::kDirectLowest)) & (overall <= Double(reference::kDirectHighest));
+  const std::uint32_t lanes_in_use = (1u << count) - 1;
+  std::uint32_t culled =
+      lane_bits<Arch>(direct & reference::sign_filter_culls(relative, largest,
+                                                            Double(reference::direct_coefficient_error().floor),
+                                                            settings.certified, settings.subdivide));
+  const std::uint32_t scaled_lanes = ~lane_bits<Arch>(direct) & lanes_in_use;
+  if (scaled_lanes != 0) {
+    const ScaledFrame<Arch> frame(x);
+    Double scaled_largest[3][2];
+    for (int i = 0; i < 3; ++i)
+      for (int tau = 0; tau < 2; ++tau)
+        scaled_largest[i][tau] = xsimd::bitwise_cast<Double>(Bits::largest(frame.relative[i][tau]));
+    const Mask scaled_culled = reference::sign_filter_culls(
+        frame.relative, scaled_largest, reference::coefficient_floor(frame.absolute_error), settings.certified,
+        settings.subdivide);
+    culled |= scaled_lanes & lane_bits<Arch>(scaled_culled & frame.evaluable);
+  }
+  return culled & lanes_in_use;
+}
+
+// The separation filter, likewise (always in the scaled frame).
+template <class Arch, class Source>
+[[gnu::flatten]] std::uint32_t separation_culled_lanes(const Source& source,
+                                                       const typename Gather<Arch>::Candidates& candidate,
+                                                       std::size_t count,
+                                                       const reference::FilterSettings& settings) {
+  using L = Lanes<Arch>;
+  using Double = typename L::Double;
+  using Mask = typename L::Mask;
+  typename L::Vector x[4][2];
+  Gather<Arch>::from(source, candidate, x);
+  const ScaledFrame<Arch> frame(x);
+  // reference::separation_error, lane by lane.
+  const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
+  const Mask enabled = settings.certified ? Mask(frame.absolute_error <= Double(0x1p-900)) : Mask(true);
+  const Mask culled = reference::separation_filter_culls(source.kind, frame.relative, Double(error.relative),
+                                                         Double(error.floor));
+  return lane_bits<Arch>(culled & enabled & frame.evaluable) & ((1u << count) - 1);
 }
 
 // The filters over candidates [begin, end): see FilterFunction. The sign
@@ -318,8 +367,7 @@ std::size_t filter_range(const Source& source, std::size_t begin, std::size_t en
       candidate[j] = static_cast<std::int64_t>(i);
       offsets[j] = static_cast<std::uint32_t>(i - begin);
     }
-    const std::uint32_t culled =
-        settings.sign ? culled_lanes<Arch, LaneFilter::sign>(source, candidate, count, settings) : 0;
+    const std::uint32_t culled = settings.sign ? sign_culled_lanes<Arch>(source, candidate, count, settings) : 0;
     counts.sign += static_cast<std::size_t>(__builtin_popcount(culled));
     kept += compress<Arch>(~culled & ((1u << count) - 1), offsets, survivors + kept);
   }
@@ -332,8 +380,7 @@ std::size_t filter_range(const Source& source, std::size_t begin, std::size_t en
       offsets[j] = survivors[first + std::min(j, count - 1)];
       candidate[j] = static_cast<std::int64_t>(begin + offsets[j]);
     }
-    const std::uint32_t culled =
-        culled_lanes<Arch, LaneFilter::separation>(source, candidate, count, settings);
+    const std::uint32_t culled = separation_culled_lanes<Arch>(source, candidate, count, settings);
     counts.separation += static_cast<std::size_t>(__builtin_popcount(culled));
     kept += compress<Arch>(~culled & ((1u << count) - 1), offsets, survivors + kept);
   }

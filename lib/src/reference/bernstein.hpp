@@ -6,7 +6,10 @@
 // reference path, an xsimd batch in the lane kernels, so both make the same
 // decisions bit for bit.
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 namespace batchccd::reference {
 
@@ -25,10 +28,13 @@ T max_of(T a, T b) {
   return select(a > b, a, b);
 }
 
-template <class T>
-T largest_component(const Vector3<T>& v) {
-  using std::abs;
-  return max_of(max_of(abs(v.x), abs(v.y)), abs(v.z));
+// The largest |component| of v, taken as the largest bit pattern of the
+// absolute values (their orders agree for non-negative doubles), so that a
+// NaN component shows as a NaN, which a max of doubles could drop. The lane
+// kernels do the same with integer lanes.
+inline double largest_magnitude(const Vector3<double>& v) {
+  const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x) & 0x7fffffffffffffffull; };
+  return std::bit_cast<double>(std::max({bits(v.x), bits(v.y), bits(v.z)}));
 }
 
 template <class T>
@@ -102,16 +108,12 @@ void bernstein_magnitudes(BernsteinCubic<T>& cubic, const Vector3<T>& a0, const 
 }
 
 // Upper bounds of the magnitudes that cost a third of bernstein_magnitudes,
-// for the filter: each of a triple product's 6 terms is at most the product
-// of its factors' largest components. (Rounding may leave a bound up to 5 u
-// below that product, which the error models' spare room covers.)
+// for the filter, from each factor's largest component magnitude (na0 =
+// max |a0_i|, and so on): each of a triple product's 6 terms is at most the
+// product of its factors' largest components. (Rounding may leave a bound
+// up to 5 u below that product, which the error models' spare room covers.)
 template <class T>
-void bernstein_magnitude_bounds(BernsteinCubic<T>& cubic, const Vector3<T>& a0, const Vector3<T>& a1,
-                                const Vector3<T>& b0, const Vector3<T>& b1, const Vector3<T>& c0,
-                                const Vector3<T>& c1) {
-  const T na0 = largest_component(a0), na1 = largest_component(a1);
-  const T nb0 = largest_component(b0), nb1 = largest_component(b1);
-  const T nc0 = largest_component(c0), nc1 = largest_component(c1);
+void bernstein_magnitude_bounds(BernsteinCubic<T>& cubic, T na0, T na1, T nb0, T nb1, T nc0, T nc1) {
   const T a0b0 = na0 * nb0, a1b0 = na1 * nb0, a0b1 = na0 * nb1, a1b1 = na1 * nb1;
   cubic.magnitude[0] = T(6) * (a0b0 * nc0);
   cubic.magnitude[1] = T(6) * (a1b0 * nc0 + a0b1 * nc0 + a0b0 * nc1);

@@ -1,5 +1,9 @@
 #include "reference/filter.hpp"
 
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+
 #include "reference/bernstein.hpp"
 #include "reference/error_bounds.hpp"
 #include "reference/separation_filter.hpp"
@@ -10,23 +14,43 @@ namespace {
 
 Vector3<double> as_vector(const Vec3& v) { return {v[0], v[1], v[2]}; }
 
+// A query's differences in its own units, for the sign filter's direct
+// frame (error_bounds.hpp: direct_coefficient_error).
+struct DirectFrame {
+  Vector3<double> relative[3][2];  // x_{i+2}(tau) - x_1(tau)
+  double largest[3][2];            // each one's largest_magnitude
+  bool applies = false;            // all within the window (so all finite)
+};
+
+DirectFrame direct_frame(Kind kind, const Query& query) {
+  DirectFrame frame;
+  double largest = 0;
+  for (int tau = 0; tau < 2; ++tau) {
+    const Vector3<double> origin = as_vector(query.points[point_index(kind, 1) + 4 * tau]);
+    for (int i = 0; i < 3; ++i) {
+      frame.relative[i][tau] = as_vector(query.points[point_index(kind, i + 2) + 4 * tau]) - origin;
+      frame.largest[i][tau] = largest_magnitude(frame.relative[i][tau]);
+      // As bit patterns, like largest_magnitude: a NaN stays the largest.
+      largest = std::bit_cast<double>(std::max(std::bit_cast<std::uint64_t>(largest),
+                                               std::bit_cast<std::uint64_t>(frame.largest[i][tau])));
+    }
+  }
+  frame.applies = largest >= kDirectLowest && largest <= kDirectHighest;
+  return frame;
+}
+
 }  // namespace
 
 bool sign_filter_culls(const ScaledQuery& query, bool certified, bool subdivide) {
-  const auto& r = query.relative;
-  BernsteinCubic<double> cubic =
-      bernstein_cubic(as_vector(r[0][0]), as_vector(r[0][1]), as_vector(r[1][0]),
-                      as_vector(r[1][1]), as_vector(r[2][0]), as_vector(r[2][1]));
-  ErrorModel whole, half;
-  if (certified) {
-    bernstein_magnitude_bounds(cubic, as_vector(r[0][0]), as_vector(r[0][1]), as_vector(r[1][0]),
-                               as_vector(r[1][1]), as_vector(r[2][0]), as_vector(r[2][1]));
-    whole = coefficient_error(query.absolute_error);
-    half = half_coefficient_error(whole);
-  } else {
-    for (double& magnitude : cubic.magnitude) magnitude = 0;
-  }
-  return sign_filter_culls(cubic, whole.relative, whole.floor, half.relative, half.floor, subdivide);
+  Vector3<double> relative[3][2];
+  double largest[3][2];
+  for (int i = 0; i < 3; ++i)
+    for (int tau = 0; tau < 2; ++tau) {
+      relative[i][tau] = as_vector(query.relative[i][tau]);
+      largest[i][tau] = largest_magnitude(relative[i][tau]);
+    }
+  return sign_filter_culls(relative, largest, coefficient_error(query.absolute_error).floor, certified,
+                           subdivide);
 }
 
 SeparationErrorModel separation_error(double absolute_error, bool certified) {
@@ -37,14 +61,27 @@ SeparationErrorModel separation_error(double absolute_error, bool certified) {
   return {SeparationErrors::relative, 0x1p-800, absolute_error <= 0x1p-900};
 }
 
-FilterVerdict run_filters(Kind kind, const ScaledQuery& query, const FilterSettings& settings) {
+FilterVerdict run_filters(Kind kind, const Query& query, const FilterSettings& settings) {
   FilterVerdict verdict;
-  if (settings.sign) verdict.sign = sign_filter_culls(query, settings.certified, settings.subdivide);
+  // The sign filter in the direct frame where it applies (nearly always):
+  // most queries end there, without the scaled frame's normalisation.
+  const DirectFrame direct = direct_frame(kind, query);
+  if (settings.sign && direct.applies) {
+    verdict.sign = sign_filter_culls(direct.relative, direct.largest,
+                                     direct_coefficient_error().floor, settings.certified,
+                                     settings.subdivide);
+    if (verdict.sign || !settings.separation) return verdict;
+  }
+  const bool sign_in_scaled_frame = settings.sign && !direct.applies;
+  if (!sign_in_scaled_frame && !settings.separation) return verdict;
+  const ScaledQuery scaled = scale_query(kind, query);
+  if (!scaled.finite || scaled.coincident) return verdict;  // for the solver's own checks
+  if (sign_in_scaled_frame) verdict.sign = sign_filter_culls(scaled, settings.certified, settings.subdivide);
   if (settings.separation && !verdict.sign) {
-    const SeparationErrorModel error = separation_error(query.absolute_error, settings.certified);
+    const SeparationErrorModel error = separation_error(scaled.absolute_error, settings.certified);
     Vector3<double> relative[3][2];
     for (int i = 0; i < 3; ++i)
-      for (int tau = 0; tau < 2; ++tau) relative[i][tau] = as_vector(query.relative[i][tau]);
+      for (int tau = 0; tau < 2; ++tau) relative[i][tau] = as_vector(scaled.relative[i][tau]);
     verdict.separation =
         error.enabled && separation_filter_culls(kind, relative, error.relative, error.floor);
   }

@@ -27,10 +27,16 @@ struct FilterVerdict {
   bool culled() const { return sign || separation; }
 };
 
-// The filters over [0, 1] for one finite, non-coincident query.
-FilterVerdict run_filters(Kind kind, const ScaledQuery& query, const FilterSettings& settings);
+// The filters over [0, 1] for one query (any input: a non-finite or
+// coincident one is never culled). The sign filter works on the query's
+// differences in its own units when they lie in a window that keeps every
+// product of three from overflow and from underflow that matters (the
+// direct frame, error_bounds.hpp), else in the scaled frame; the separation
+// filter always in the scaled frame. The lane kernels decide the same, lane
+// for lane.
+FilterVerdict run_filters(Kind kind, const Query& query, const FilterSettings& settings);
 
-// The sign filter alone.
+// The sign filter alone, in the scaled frame.
 bool sign_filter_culls(const ScaledQuery& query, bool certified, bool subdivide = true);
 
 // The separation filter's error model: relative bound and absolute floor,

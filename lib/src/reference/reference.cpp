@@ -51,6 +51,10 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, bool 
                                           : QueryResult{true, 0.0, Status::invalid_input};
     return evaluation;
   }
+  if (!filtered && run_filters(kind, query, filter_settings(options)).culled()) {
+    evaluation.culled = true;
+    return evaluation;
+  }
   const ScaledQuery scaled = scale_query(kind, query);
   if (!scaled.finite) {
     evaluation.result = {true, 0.0, Status::invalid_input};
@@ -65,10 +69,6 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, bool 
     } else {
       evaluation.result = {true, 0.0, Status::ok};
     }
-    return evaluation;
-  }
-  if (!filtered && run_filters(kind, scaled, filter_settings(options)).culled()) {
-    evaluation.culled = true;
     return evaluation;
   }
   const SolverOutcome outcome = solve_inclusion(kind, scaled, solver_settings(options));

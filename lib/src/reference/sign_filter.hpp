@@ -1,6 +1,7 @@
 #pragma once
 
 #include "reference/bernstein.hpp"
+#include "reference/error_bounds.hpp"
 
 // The algebraic non-penetration filter (DESIGN.md §2): a certified sign test
 // on the Bernstein coefficients, branch-free so it runs unchanged in SIMD
@@ -33,6 +34,27 @@ auto sign_filter_culls(const BernsteinCubic<T>& cubic, T relative, T floor, T ha
   return certainly_root_free(cubic.coefficient, cubic.magnitude, relative, floor) |
          (certainly_root_free(left, left_magnitude, half_relative, half_floor) &
           certainly_root_free(right, right_magnitude, half_relative, half_floor));
+}
+
+// The filter on a query's six differences relative[i][tau] (DESIGN.md's
+// x_{i+2}(tau) - x_1(tau), in whichever frame), given each one's largest
+// component magnitude, with the coefficients' absolute error floor of that
+// frame (their relative error is coefficient_error's in both). Uncertified:
+// plain signs.
+template <class T>
+auto sign_filter_culls(const Vector3<T> (&relative)[3][2], const T (&largest)[3][2], T floor,
+                       bool certified, bool subdivide) {
+  const auto& r = relative;
+  BernsteinCubic<T> cubic = bernstein_cubic(r[0][0], r[0][1], r[1][0], r[1][1], r[2][0], r[2][1]);
+  if (!certified) {
+    for (T& m : cubic.magnitude) m = T(0);
+    return sign_filter_culls(cubic, T(0), T(0), T(0), T(0), subdivide);
+  }
+  const auto& n = largest;
+  bernstein_magnitude_bounds(cubic, n[0][0], n[0][1], n[1][0], n[1][1], n[2][0], n[2][1]);
+  const ErrorModel half = half_coefficient_error(coefficient_error(0.0));
+  return sign_filter_culls(cubic, T(coefficient_error(0.0).relative), floor, T(half.relative), T(kHalfWeightSum) * floor,
+                           subdivide);
 }
 
 }  // namespace batchccd::reference
