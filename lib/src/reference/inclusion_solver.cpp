@@ -89,7 +89,7 @@ class InclusionSolver {
     heap.assign(1, Interval{0, 1});
     while (!heap.empty()) {
       std::pop_heap(heap.begin(), heap.end(), starts_later);
-      const Interval time = heap.back();
+      Interval time = heap.back();
       heap.pop_back();
       const Endpoints ends = endpoints(time);
       const CubicSigns cubic = cubic_signs(ends);
@@ -107,8 +107,13 @@ class InclusionSolver {
         if (search == Search::excluded) continue;
         if (search == Search::out_of_iterations) return {true, time.low, true, false};
         if (search == Search::found && settled) return {true, time.low, false, false};
-      } else if (settled) {
-        return certain_contact(time);
+      } else {
+        // A certain contact: the inside test holds over all of `time`, so
+        // the cubic alone narrows it to its first root, much cheaper than
+        // the search below, which goes on only when the signs get too close
+        // to call first.
+        if (settings_.need_toi) time = narrow_to_first_root(time, settings_.toi_tolerance);
+        if (time.width() <= settings_.toi_tolerance || !settings_.need_toi) return certain_contact(time);
       }
       if (time.width() <= kSmallestWidth) return {true, time.low, false, false};  // nothing left to refine
       for (const Interval half : {Interval{time.low, time.middle()}, Interval{time.middle(), time.high}}) {
@@ -122,13 +127,19 @@ class InclusionSolver {
  private:
   // The first contact lies in `time` at the cubic's first root there (a
   // certain root, a certain inside test over all of it, every earlier time
-  // excluded). Refines it by halving on the cubic's signs alone: a root-free
-  // left half sends it right, a certain sign change left, until the width
-  // asked or a sign too close to call.
+  // excluded): refined to refined_toi_width when asked.
   SolverOutcome certain_contact(Interval time) const {
-    const bool refine =
-        settings_.certified && settings_.need_toi && settings_.refined_toi_width > 0;
-    while (refine && time.width() > settings_.refined_toi_width) {
+    if (settings_.certified && settings_.need_toi && settings_.refined_toi_width > 0)
+      time = narrow_to_first_root(time, settings_.refined_toi_width);
+    return {true, time.low, false, settings_.certified, time.high};
+  }
+
+  // Narrows an interval holding a certain contact at the cubic's first root
+  // by halving on the cubic's signs alone: a root-free left half sends it
+  // right, a certain sign change left, until `width` or a sign too close to
+  // call.
+  Interval narrow_to_first_root(Interval time, double width) const {
+    while (time.width() > width) {
       const Interval left{time.low, time.middle()};
       const CubicSigns cubic = cubic_signs(endpoints(left));
       if (cubic.root_free) {
@@ -139,7 +150,7 @@ class InclusionSolver {
         break;
       }
     }
-    return {true, time.low, false, settings_.certified, time.high};
+    return time;
   }
 
   struct Image {
