@@ -23,6 +23,15 @@ inline double select(bool condition, double if_true, double if_false) {
   return condition ? if_true : if_false;
 }
 
+// Whether a condition holds in every lane (xsimd's all, found by ADL,
+// serves batches).
+inline bool all_of(bool condition) { return condition; }
+template <class Mask>
+  requires requires(const Mask& mask) { all(mask); }
+bool all_of(const Mask& mask) {
+  return all(mask);
+}
+
 template <class T>
 T max_of(T a, T b) {
   return select(a > b, a, b);

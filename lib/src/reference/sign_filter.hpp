@@ -27,13 +27,15 @@ auto certainly_root_free(const T (&coefficient)[4], const T (&magnitude)[4], T r
 template <class T>
 auto sign_filter_culls(const BernsteinCubic<T>& cubic, T relative, T floor, T half_relative,
                        T half_floor, bool subdivide = true) {
-  if (!subdivide) return certainly_root_free(cubic.coefficient, cubic.magnitude, relative, floor);
+  const auto whole = certainly_root_free(cubic.coefficient, cubic.magnitude, relative, floor);
+  // Where every lane is settled already the halves change nothing: most
+  // groups of lanes skip them.
+  if (!subdivide || all_of(whole)) return whole;
   T left[4], right[4], left_magnitude[4], right_magnitude[4];
   split_at_half(cubic.coefficient, left, right);
   split_at_half(cubic.magnitude, left_magnitude, right_magnitude);
-  return certainly_root_free(cubic.coefficient, cubic.magnitude, relative, floor) |
-         (certainly_root_free(left, left_magnitude, half_relative, half_floor) &
-          certainly_root_free(right, right_magnitude, half_relative, half_floor));
+  return whole | (certainly_root_free(left, left_magnitude, half_relative, half_floor) &
+                  certainly_root_free(right, right_magnitude, half_relative, half_floor));
 }
 
 // The filter on a query's six differences relative[i][tau] (DESIGN.md's
