@@ -53,17 +53,52 @@ void in_arena(const Options& options, const Work& work) {
   }
 }
 
-// Evaluates candidates [0, count) of a source, in the current arena: the
-// lane filter over batches, then the scalar path for every survivor, writing
-// results[offset + i] when per-candidate results are asked for. Results land
-// at fixed places and the reductions (sums, minimum) do not depend on order,
-// so the outcome is the same for any thread count.
+// A call runs in two phases, each in the current arena. First the lane
+// filters over every source, which keep their survivors and counts to
+// themselves: a refusal on the way (an index out of range) leaves the
+// caller's BatchResult as it was. Then the results: defaults for the culled
+// candidates, the scalar path for the survivors. Results land at fixed
+// places and the reductions (sums, minimum) do not depend on order, so the
+// outcome is the same for any thread count.
+using Partials = tbb::combinable<Partial>;
+
+// The lane filters over candidates [0, count) of a source, in batches:
+// the survivors' indices, in no particular order.
 template <class Source>
-void run_source(const Source& source, std::size_t count, simd::FilterFunction<Source> filter,
-                const Options& options, std::size_t offset, BatchResult& batch) {
-  const bool filtered = options.mode != Mode::cubic;  // the baseline runs unfiltered
+std::vector<std::size_t> filter_source(const Source& source, std::size_t count,
+                                       simd::FilterFunction<Source> filter, const Options& options,
+                                       Partials& partials) {
   const reference::FilterSettings settings = reference::filter_settings(options);
-  tbb::combinable<Partial> partials;
+  tbb::enumerable_thread_specific<std::vector<std::uint32_t>> batch_survivors;
+  tbb::enumerable_thread_specific<std::vector<std::size_t>> survivors;
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, count, simd::kFilterBatch),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        std::vector<std::uint32_t>& kept_in_batch = batch_survivors.local();
+        if (kept_in_batch.size() < range.size()) kept_in_batch.resize(std::max(range.size(), simd::kFilterBatch));
+        simd::FilterCounts culls;
+        const std::size_t kept = filter(source, range.begin(), range.end(), settings, kept_in_batch.data(), culls);
+        Counters& counters = partials.local().counters;
+        counters.culled += static_cast<std::int64_t>(range.size() - kept);
+        counters.culled_by_sign += static_cast<std::int64_t>(culls.sign);
+        counters.culled_by_separation += static_cast<std::int64_t>(culls.separation);
+        std::vector<std::size_t>& mine = survivors.local();
+        for (std::size_t j = 0; j < kept; ++j) mine.push_back(range.begin() + kept_in_batch[j]);
+      },
+      tbb::simple_partitioner());
+  std::vector<std::size_t> all;
+  for (const std::vector<std::size_t>& mine : survivors) all.insert(all.end(), mine.begin(), mine.end());
+  return all;
+}
+
+// Results for candidates [0, count) of a source, at results[offset + i]
+// when per-candidate results are asked for: the scalar path over
+// `survivors` (nullptr: every candidate, the unfiltered baseline), defaults
+// for the rest.
+template <class Source>
+void solve_source(const Source& source, std::size_t count, const std::vector<std::size_t>* survivors,
+                  const Options& options, std::size_t offset, BatchResult& batch, Partials& partials) {
+  const bool filtered = survivors != nullptr;
   const auto evaluate = [&](std::size_t i, Partial& partial) {
     const reference::Evaluation e =
         reference::evaluate_query(source.kind, simd::query_at(source, i), options, filtered);
@@ -71,50 +106,35 @@ void run_source(const Source& source, std::size_t count, simd::FilterFunction<So
     if (options.per_candidate_results) batch.results[offset + i] = e.result;
     if (options.hit_list && e.result.hit) partial.hits.push_back({offset + i, e.result.toi, e.result.status});
   };
+  partials.local().counters.candidates += static_cast<std::int64_t>(count);
   if (!filtered) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, simd::kFilterBatch),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         Partial& partial = partials.local();
-                        partial.counters.candidates += static_cast<std::int64_t>(range.size());
                         for (std::size_t i = range.begin(); i < range.end(); ++i) evaluate(i, partial);
                       },
                       tbb::simple_partitioner());
-  } else {
-    // The lane filters over batches; each worker keeps its survivors.
-    tbb::enumerable_thread_specific<std::vector<std::uint32_t>> batch_survivors;
-    tbb::enumerable_thread_specific<std::vector<std::size_t>> survivors;
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, count, simd::kFilterBatch),
-        [&](const tbb::blocked_range<std::size_t>& range) {
-          std::vector<std::uint32_t>& kept_in_batch = batch_survivors.local();
-          if (kept_in_batch.size() < range.size()) kept_in_batch.resize(std::max(range.size(), simd::kFilterBatch));
-          simd::FilterCounts culls;
-          const std::size_t kept =
-              filter(source, range.begin(), range.end(), settings, kept_in_batch.data(), culls);
-          Partial& partial = partials.local();
-          partial.counters.candidates += static_cast<std::int64_t>(range.size());
-          partial.counters.culled += static_cast<std::int64_t>(range.size() - kept);
-          partial.counters.culled_by_sign += static_cast<std::int64_t>(culls.sign);
-          partial.counters.culled_by_separation += static_cast<std::int64_t>(culls.separation);
-          // Culled candidates' results, here in parallel (the storage may be
-          // the caller's from an earlier call); survivors' come in the pass below.
-          if (options.per_candidate_results)
-            std::fill(batch.results.begin() + static_cast<std::ptrdiff_t>(offset + range.begin()),
-                      batch.results.begin() + static_cast<std::ptrdiff_t>(offset + range.end()), QueryResult{});
-          std::vector<std::size_t>& mine = survivors.local();
-          for (std::size_t j = 0; j < kept; ++j) mine.push_back(range.begin() + kept_in_batch[j]);
-        },
-        tbb::simple_partitioner());
-    // Then all survivors, in small pieces.
-    std::vector<std::size_t> all;
-    for (const std::vector<std::size_t>& mine : survivors) all.insert(all.end(), mine.begin(), mine.end());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, all.size(), kSolverGrain),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        Partial& partial = partials.local();
-                        for (std::size_t k = range.begin(); k < range.end(); ++k) evaluate(all[k], partial);
-                      },
-                      tbb::simple_partitioner());
+    return;
   }
+  // Defaults, in parallel (the storage may be the caller's from an earlier
+  // call); the survivors' own results overwrite theirs below.
+  if (options.per_candidate_results)
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, simd::kFilterBatch),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        const auto first = batch.results.begin() + static_cast<std::ptrdiff_t>(offset);
+                        std::fill(first + static_cast<std::ptrdiff_t>(range.begin()),
+                                  first + static_cast<std::ptrdiff_t>(range.end()), QueryResult{});
+                      });
+  // Survivors in small pieces: their costs vary by orders of magnitude.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, survivors->size(), kSolverGrain),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      Partial& partial = partials.local();
+                      for (std::size_t k = range.begin(); k < range.end(); ++k) evaluate((*survivors)[k], partial);
+                    },
+                    tbb::simple_partitioner());
+}
+
+void combine(Partials& partials, BatchResult& batch) {
   partials.combine_each([&](const Partial& partial) {
     batch.counters += partial.counters;
     batch.earliest_toi = std::min(batch.earliest_toi, partial.earliest_toi);
@@ -155,11 +175,16 @@ void reset(BatchResult& out, std::size_t count, const Options& options) {
 
 void batch_ccd(Kind kind, std::span<const Query> queries, const Options& options, BatchResult& out) {
   const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
-  reset(out, queries.size(), options);
-  if (!queries.empty())
-    in_arena(options, [&] {
-      run_source(simd::RawQueries{kind, queries.data()}, queries.size(), kernels.raw, options, 0, out);
-    });
+  const bool filtered = options.mode != Mode::cubic;  // the baseline runs unfiltered
+  const simd::RawQueries source{kind, queries.data()};
+  in_arena(options, [&] {
+    Partials partials;
+    std::vector<std::size_t> survivors;
+    if (filtered) survivors = filter_source(source, queries.size(), kernels.raw, options, partials);
+    reset(out, queries.size(), options);
+    solve_source(source, queries.size(), filtered ? &survivors : nullptr, options, 0, out, partials);
+    combine(partials, out);
+  });
   sort_hits(out);
 }
 
@@ -172,11 +197,14 @@ BatchResult batch_ccd(Kind kind, std::span<const Query> queries, const Options& 
 void mesh_ccd(const MeshView& mesh, const Candidates& candidates, const Options& options,
               BatchResult& out) {
   const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
+  const bool filtered = options.mode != Mode::cubic;  // the baseline runs unfiltered
   in_arena(options, [&] {
-    check_mesh(mesh, candidates);  // before `out` is touched
+    // The lane filters check the ids of every list they read on the way;
+    // here the rest: shapes, faces, lists switched off, the baseline's lists.
+    check_mesh(mesh, candidates, {.vertex_face = !filtered || !options.vertex_face,
+                                  .edge_edge = !filtered || !options.edge_edge});
     const std::size_t vertex_face = options.vertex_face ? candidates.vertex_face.size() : 0;
     const std::size_t edge_edge = options.edge_edge ? candidates.edge_edge.size() : 0;
-    reset(out, vertex_face + edge_edge, options);
     simd::PackedPositions packed(mesh.positions_t0.rows());
     tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, mesh.positions_t0.rows(), 1 << 14),
                       [&](const tbb::blocked_range<std::int64_t>& rows) {
@@ -186,8 +214,24 @@ void mesh_ccd(const MeshView& mesh, const Candidates& candidates, const Options&
     const simd::MeshVertexFace vertex_face_source{packed.view(), mesh.faces.data(), mesh.faces.rows(),
                                                   candidates.vertex_face.data()};
     const simd::MeshEdgeEdge edge_edge_source{packed.view(), candidates.edge_edge.data()};
-    run_source(vertex_face_source, vertex_face, kernels.vertex_face, options, 0, out);
-    run_source(edge_edge_source, edge_edge, kernels.edge_edge, options, vertex_face, out);
+    Partials partials;
+    std::vector<std::size_t> vertex_face_survivors, edge_edge_survivors;
+    if (filtered) {
+      try {
+        vertex_face_survivors =
+            filter_source(vertex_face_source, vertex_face, kernels.vertex_face, options, partials);
+        edge_edge_survivors = filter_source(edge_edge_source, edge_edge, kernels.edge_edge, options, partials);
+      } catch (const simd::IndexOutOfRange&) {
+        check_mesh(mesh, candidates);  // names the first bad id
+        throw std::logic_error("mesh_ccd: a filter found an index out of range that check_mesh did not");
+      }
+    }
+    reset(out, vertex_face + edge_edge, options);
+    solve_source(vertex_face_source, vertex_face, filtered ? &vertex_face_survivors : nullptr, options, 0,
+                 out, partials);
+    solve_source(edge_edge_source, edge_edge, filtered ? &edge_edge_survivors : nullptr, options,
+                 vertex_face, out, partials);
+    combine(partials, out);
   });
   sort_hits(out);
 }

@@ -46,22 +46,24 @@ bool any_outside(const std::vector<Item>& items, Outside item_outside) {
 
 // Every index at once, so that a valid call (the common case) pays for no
 // per-index message machinery.
-bool all_in_range(const MeshView& mesh, const Candidates& candidates) {
+bool all_in_range(const MeshView& mesh, const Candidates& candidates, CandidateLists lists) {
   const Eigen::Index n = mesh.positions_t0.rows(), m = mesh.faces.rows();
   bool found = false;
   for (Eigen::Index i = 0; i < mesh.faces.size(); ++i) found |= outside(mesh.faces.data()[i], n);
-  found |= any_outside(candidates.vertex_face, [n, m](const std::array<int, 2>& pair) {
-    return outside(pair[0], n) | outside(pair[1], m);
-  });
-  found |= any_outside(candidates.edge_edge, [n](const std::array<int, 4>& pair) {
-    return outside(pair[0], n) | outside(pair[1], n) | outside(pair[2], n) | outside(pair[3], n);
-  });
+  if (lists.vertex_face)
+    found |= any_outside(candidates.vertex_face, [n, m](const std::array<int, 2>& pair) {
+      return outside(pair[0], n) | outside(pair[1], m);
+    });
+  if (lists.edge_edge)
+    found |= any_outside(candidates.edge_edge, [n](const std::array<int, 4>& pair) {
+      return outside(pair[0], n) | outside(pair[1], n) | outside(pair[2], n) | outside(pair[3], n);
+    });
   return !found;
 }
 
 }  // namespace
 
-void check_mesh(const MeshView& mesh, const Candidates& candidates) {
+void check_mesh(const MeshView& mesh, const Candidates& candidates, CandidateLists lists) {
   const Eigen::Index n = mesh.positions_t0.rows();
   const Eigen::Index m = mesh.faces.rows();
   check_three_columns(mesh.positions_t0, "positions_t0");
@@ -70,7 +72,7 @@ void check_mesh(const MeshView& mesh, const Candidates& candidates) {
   if (mesh.positions_t1.rows() != n)
     refuse("positions_t0 has " + std::to_string(n) + " rows but positions_t1 has " +
            std::to_string(mesh.positions_t1.rows()));
-  if (all_in_range(mesh, candidates)) return;
+  if (all_in_range(mesh, candidates, lists)) return;
   // Something is out of range: find the first offender and name it.
   for (Eigen::Index f = 0; f < m; ++f)
     for (int k = 0; k < 3; ++k) {

@@ -4,10 +4,18 @@
 
 namespace batchccd {
 
+// Which candidate lists check_mesh reads (the lane filters check the ids
+// of those they read themselves).
+struct CandidateLists {
+  bool vertex_face = true;
+  bool edge_edge = true;
+};
+
 // Throws std::invalid_argument naming the first bad item: matrices that are
 // not n x 3 / m x 3 (zero rows: any column count) with positions_t0 and
 // positions_t1 of equal row counts, or an index out of range in a face or in
-// any candidate list. Runs in the caller's task arena.
-void check_mesh(const MeshView& mesh, const Candidates& candidates);
+// one of `lists` (once something is wrong, the first bad item of all, in the
+// order faces, vertex-face, edge-edge). Runs in the caller's task arena.
+void check_mesh(const MeshView& mesh, const Candidates& candidates, CandidateLists lists = {});
 
 }  // namespace batchccd

@@ -28,6 +28,7 @@ struct RawQueries {
 inline constexpr int kRowDoubles = 8;
 struct MeshPositions {
   const double* rows;  // 64-byte aligned
+  std::int64_t vertices;
 };
 
 // Owns the packed rows of a mesh, made from Eigen's column-major n x 3
@@ -59,7 +60,7 @@ class PackedPositions {
     }
   }
 
-  MeshPositions view() const { return {rows_.get()}; }
+  MeshPositions view() const { return {rows_.get(), vertices_}; }
 
  private:
   struct Free {
@@ -83,16 +84,43 @@ struct MeshEdgeEdge {
   const std::array<int, 4>* pairs;  // a0, a1, b0, b1
 };
 
-// Vertex ids of candidate i in DESIGN.md's order x1..x4 (VF: a, b, c, p).
-// Always inlined, as the lane kernels compiled with other flags call them.
+// Thrown where a candidate names a vertex or face the mesh does not have.
+// The filters meet every candidate's ids before anything reads the mesh, so
+// they check them on the way (vertex_ids, or whole lane groups at once)
+// instead of a pass over the lists of its own; the scheduler then names the
+// first bad one (check_mesh) before it writes anything. The faces' own
+// entries are checked before (O(faces)).
+struct IndexOutOfRange {};
+
+[[gnu::always_inline]] inline std::int64_t checked(int id, std::int64_t count) {
+  if (static_cast<std::uint64_t>(static_cast<std::int64_t>(id)) >= static_cast<std::uint64_t>(count))
+    throw IndexOutOfRange{};
+  return id;
+}
+
+// Vertex ids of candidate i in DESIGN.md's order x1..x4 (VF: a, b, c, p),
+// checked unless the caller has (check = false). Always inlined, as the
+// lane kernels compiled with other flags call them.
+template <bool check = true>
 [[gnu::always_inline]] inline std::array<std::int64_t, 4> vertex_ids(const MeshVertexFace& mesh, std::size_t i) {
   const auto [vertex, face] = mesh.pairs[i];
-  const int* f = mesh.faces + face;
-  return {f[0], f[mesh.face_rows], f[2 * mesh.face_rows], vertex};
+  if constexpr (check) {
+    const int* f = mesh.faces + checked(face, mesh.face_rows);
+    return {f[0], f[mesh.face_rows], f[2 * mesh.face_rows], checked(vertex, mesh.positions.vertices)};
+  } else {
+    const int* f = mesh.faces + face;
+    return {f[0], f[mesh.face_rows], f[2 * mesh.face_rows], vertex};
+  }
 }
+template <bool check = true>
 [[gnu::always_inline]] inline std::array<std::int64_t, 4> vertex_ids(const MeshEdgeEdge& mesh, std::size_t i) {
   const auto& e = mesh.pairs[i];
-  return {e[0], e[1], e[2], e[3]};
+  if constexpr (check) {
+    const std::int64_t n = mesh.positions.vertices;
+    return {checked(e[0], n), checked(e[1], n), checked(e[2], n), checked(e[3], n)};
+  } else {
+    return {e[0], e[1], e[2], e[3]};
+  }
 }
 
 template <class MeshSource>

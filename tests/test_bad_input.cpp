@@ -468,6 +468,68 @@ TEST(BadInputMesh, OutOfRangeIndicesAreRefusedNamingTheCandidate) {
   }
 }
 
+// The lane filters check the candidates' ids on the way instead of a pass of
+// their own (a vector test per full group of lanes, id by id in a batch's
+// last group): a bad id anywhere in a long list, in every instruction set
+// and mode, is refused naming the first one, and a BatchResult passed in
+// keeps what an earlier call wrote there.
+TEST(BadInputMesh, BadIdsAnywhereInLongListsAreRefusedAndLeaveTheResultAsItWas) {
+  TestMesh good = degenerate_mesh();
+  const Candidates few = good.candidates;
+  good.candidates = {};
+  for (int copy = 0; copy < 400; ++copy) {  // 2800 and 2400 candidates: full groups and a partial batch
+    good.candidates.vertex_face.insert(good.candidates.vertex_face.end(), few.vertex_face.begin(), few.vertex_face.end());
+    good.candidates.edge_edge.insert(good.candidates.edge_edge.end(), few.edge_edge.begin(), few.edge_edge.end());
+  }
+  const std::size_t last_vf = good.candidates.vertex_face.size() - 1, last_ee = good.candidates.edge_edge.size() - 1;
+  struct Case {
+    bool edge_edge;
+    std::size_t candidate;
+    int slot, id;
+    std::string words;
+  };
+  const Case cases[] = {
+      {false, 0, 0, 10, "vertex-face candidate 0: vertex 10 out of range"},
+      {false, 2053, 1, 3, "vertex-face candidate 2053: face 3 out of range"},
+      {false, 1000, 1, -1, "vertex-face candidate 1000: face -1 out of range"},
+      {false, last_vf, 0, -7, "vertex-face candidate " + std::to_string(last_vf) + ": vertex -7"},
+      {true, 9, 2, 10, "edge-edge candidate 9: vertex 10 out of range"},
+      {true, 2047, 3, -1, "edge-edge candidate 2047: vertex -1 out of range"},
+      {true, 2301, 1, 1 << 30, "edge-edge candidate 2301: vertex 1073741824 out of range"},
+      {true, last_ee, 0, 11, "edge-edge candidate " + std::to_string(last_ee) + ": vertex 11"},
+  };
+  for (const Mode mode : {Mode::exact, Mode::conservative, Mode::fast, Mode::cubic})
+    for (const Isa isa : batchccd::available_isas()) {
+      Options options;
+      options.mode = mode;
+      options.isa = isa;
+      BatchResult out = batchccd::mesh_ccd(good.view(), good.candidates, options);
+      const BatchResult before = out;
+      for (const Case& c : cases) {
+        SCOPED_TRACE(std::string(batchccd::to_string(mode)) + " " + batchccd::to_string(isa) + ": " + c.words);
+        TestMesh bad = good;
+        if (c.edge_edge) {
+          bad.candidates.edge_edge[c.candidate][static_cast<std::size_t>(c.slot)] = c.id;
+        } else {
+          bad.candidates.vertex_face[c.candidate][static_cast<std::size_t>(c.slot)] = c.id;
+        }
+        try {
+          batchccd::mesh_ccd(bad.view(), bad.candidates, options, out);
+          ADD_FAILURE() << "accepted";
+        } catch (const std::invalid_argument& error) {
+          EXPECT_NE(std::string(error.what()).find(c.words), std::string::npos) << error.what();
+        }
+        ASSERT_EQ(out.results.size(), before.results.size());
+        for (std::size_t i = 0; i < out.results.size(); ++i) {
+          ASSERT_EQ(out.results[i].hit, before.results[i].hit) << i;
+          ASSERT_EQ(out.results[i].toi, before.results[i].toi) << i;
+        }
+        EXPECT_EQ(out.counters.candidates, before.counters.candidates);
+        EXPECT_EQ(out.counters.hits, before.counters.hits);
+      }
+    }
+}
+
 TEST(BadInputMesh, CandidatesOutsideTheMeshAreRefusedEvenWhenTheirListIsOff) {
   TestMesh mesh = degenerate_mesh();
   mesh.candidates.edge_edge.push_back({0, 1, 2, 99});
