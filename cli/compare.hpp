@@ -33,8 +33,10 @@ struct MethodRun {
   std::int64_t culled = 0;  // candidates the lane filters removed (0 without filters)
 };
 
-// Runs `method` on every candidate with `threads` workers (0: all).
-MethodRun run_method(Method method, const Workload& workload, int threads);
+// Runs `method` on every candidate with `threads` workers (0: all), `runs`
+// times: the time is the fastest run's (a busy machine only ever adds
+// time), the answers the last run's.
+MethodRun run_method(Method method, const Workload& workload, int threads, int runs = 1);
 
 // A method's figures, summed over the workloads added.
 struct MethodTally {
