@@ -88,7 +88,7 @@ struct Candidates {
 };
 
 // Bad input (tests/test_bad_input.cpp). The whole call is refused, before
-// anything is evaluated, with std::invalid_argument naming the first bad
+// any result is written, with std::invalid_argument naming the first bad
 // item, when positions_t0 and positions_t1 differ in row count, a matrix
 // with rows does not have 3 columns, or an index is out of range: a face's
 // vertex, or a candidate's vertex or face id (negative or too large), in
