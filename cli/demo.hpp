@@ -17,7 +17,7 @@ enum class BuiltinScene { cloth, rigid };
 
 struct DemoSettings {
   BuiltinScene scene = BuiltinScene::cloth;
-  int resolution = 0;  // 0: the scene's demo size (about 20 s on 2 cores)
+  int resolution = 0;  // 0: the scene's demo size (about 35 s on 2 cores)
   int threads = 0;     // 0: all
   std::filesystem::path out = "batchccd-demo";  // report.txt, methods.csv, plot.svg
   bool sections = true;  // also the costs and the stiff and extreme suite

@@ -259,7 +259,7 @@ constexpr std::string_view demo_usage =
     "ratio, false negatives and positives, and TOI error (max and mean), all\n"
     "against exact mode; then what each part of a call costs, and each mode on\n"
     "the stiff and extreme suite. Writes report.txt, methods.csv and plot.svg\n"
-    "(error against run time). The default takes about 20 s on 2 cores.\n"
+    "(error against run time). The default takes about 35 s on 2 cores.\n"
     "\n"
     "Options:\n"
     "  --scene cloth|rigid  cloth (default): a sheet draping, folding and twisting\n"
