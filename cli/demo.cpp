@@ -20,8 +20,9 @@ namespace batchccd::cli {
 namespace {
 
 // The demo's default sizes, chosen so that the whole demo takes well under
-// a minute on 2 cores (about 35 s, every method timed 3 times): the cloth's steps from just before its
-// first contact (step 73) through the fold, about 4 M candidates each.
+// a minute on 2 cores (about 35 s, every method timed 3 times): the
+// cloth's steps from just before its first contact (step 73) through the
+// fold, about 4 M candidates each.
 constexpr int kClothResolution = 128;
 constexpr int kClothSteps = 100;
 constexpr int kClothFirstFrame = 68;
