@@ -358,7 +358,11 @@ template <class Arch, class Source>
 template <class Arch>
 void check_ids(const RawQueries&, std::size_t, std::size_t) {}  // nothing to index
 
-inline std::uint32_t id_limit(std::int64_t count) {  // ids are ints: count capped at 2^31
+// Ids are ints: below count when, as unsigned, below count capped at 2^31.
+// Always inlined, like every non-template here: the kernel files are
+// compiled with different instruction sets, and one out-of-line copy would
+// be shared by all of them.
+[[gnu::always_inline]] inline std::uint32_t id_limit(std::int64_t count) {
   return static_cast<std::uint32_t>(std::min<std::int64_t>(count, std::int64_t{1} << 31));
 }
 

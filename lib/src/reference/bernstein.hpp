@@ -37,13 +37,16 @@ T max_of(T a, T b) {
   return select(a > b, a, b);
 }
 
-// The largest |component| of v, taken as the largest bit pattern of the
-// absolute values (their orders agree for non-negative doubles), so that a
-// NaN component shows as a NaN, which a max of doubles could drop. The lane
-// kernels do the same with integer lanes.
+// |x| as a bit pattern: the orders of the two agree for non-negative
+// doubles, and a NaN sorts above everything, where a max of doubles could
+// drop it. The lane kernels do the same with integer lanes.
+inline std::uint64_t magnitude_bits(double x) {
+  return std::bit_cast<std::uint64_t>(x) & 0x7fffffffffffffffull;
+}
+
+// The largest |component| of v, by magnitude_bits (a NaN component shows).
 inline double largest_magnitude(const Vector3<double>& v) {
-  const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x) & 0x7fffffffffffffffull; };
-  return std::bit_cast<double>(std::max({bits(v.x), bits(v.y), bits(v.z)}));
+  return std::bit_cast<double>(std::max({magnitude_bits(v.x), magnitude_bits(v.y), magnitude_bits(v.z)}));
 }
 
 template <class T>

@@ -24,18 +24,17 @@ struct DirectFrame {
 
 DirectFrame direct_frame(Kind kind, const Query& query) {
   DirectFrame frame;
-  double largest = 0;
+  std::uint64_t largest = 0;  // magnitude_bits: a NaN stays the largest
   for (int tau = 0; tau < 2; ++tau) {
     const Vector3<double> origin = as_vector(query.points[point_index(kind, 1) + 4 * tau]);
     for (int i = 0; i < 3; ++i) {
       frame.relative[i][tau] = as_vector(query.points[point_index(kind, i + 2) + 4 * tau]) - origin;
       frame.largest[i][tau] = largest_magnitude(frame.relative[i][tau]);
-      // As bit patterns, like largest_magnitude: a NaN stays the largest.
-      largest = std::bit_cast<double>(std::max(std::bit_cast<std::uint64_t>(largest),
-                                               std::bit_cast<std::uint64_t>(frame.largest[i][tau])));
+      largest = std::max(largest, magnitude_bits(frame.largest[i][tau]));
     }
   }
-  frame.applies = largest >= kDirectLowest && largest <= kDirectHighest;
+  const double overall = std::bit_cast<double>(largest);
+  frame.applies = overall >= kDirectLowest && overall <= kDirectHighest;
   return frame;
 }
 

@@ -54,8 +54,8 @@ auto sign_filter_culls(const Vector3<T> (&relative)[3][2], const T (&largest)[3]
   }
   const auto& n = largest;
   bernstein_magnitude_bounds(cubic, n[0][0], n[0][1], n[1][0], n[1][1], n[2][0], n[2][1]);
-  const ErrorModel half = half_coefficient_error(coefficient_error(0.0));
-  return sign_filter_culls(cubic, T(coefficient_error(0.0).relative), floor, T(half.relative), T(kHalfWeightSum) * floor,
+  const ErrorModel whole = coefficient_error(0.0), half = half_coefficient_error(whole);
+  return sign_filter_culls(cubic, T(whole.relative), floor, T(half.relative), T(kHalfWeightSum) * floor,
                            subdivide);
 }
 
