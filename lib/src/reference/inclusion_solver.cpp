@@ -17,7 +17,8 @@ namespace {
 // (1 - t), 1 - v and u + v never round.
 constexpr double kSmallestWidth = 0x1p-45;
 
-// Time intervals wider than this search the parameters with a small budget.
+// Time intervals wider than this search the parameters with a small budget,
+// then (when the cubic certainly has a root there) narrow on its signs.
 constexpr double kWideInterval = 0x1p-8;
 constexpr std::int64_t kWideBudget = 16;
 
@@ -107,6 +108,18 @@ class InclusionSolver {
         if (search == Search::excluded) continue;
         if (search == Search::out_of_iterations) return {true, time.low, true, false};
         if (search == Search::found && settled) return {true, time.low, false, false};
+        if (cubic.certain_root && time.width() > kWideInterval) {
+          // Not excluded at a glance: the cubic's signs alone narrow it to
+          // its first root, far cheaper than halving with a parameter search
+          // at every step. What they drop before it is root-free, so
+          // contact-free; what follows it waits its turn.
+          const Interval first = narrow_to_first_root(time, kWideInterval);
+          if (first.width() < time.width()) {
+            push(heap, first);
+            if (first.high < time.high) push(heap, Interval{first.high, time.high});
+            continue;
+          }
+        }
       } else {
         // A certain contact: the inside test holds over all of `time`, so
         // the cubic alone narrows it to its first root, much cheaper than
@@ -116,10 +129,8 @@ class InclusionSolver {
         if (time.width() <= settings_.toi_tolerance || !settings_.need_toi) return certain_contact(time);
       }
       if (time.width() <= kSmallestWidth) return {true, time.low, false, false};  // nothing left to refine
-      for (const Interval half : {Interval{time.low, time.middle()}, Interval{time.middle(), time.high}}) {
-        heap.push_back(half);
-        std::push_heap(heap.begin(), heap.end(), starts_later);
-      }
+      push(heap, Interval{time.low, time.middle()});
+      push(heap, Interval{time.middle(), time.high});
     }
     return {false, 0, false, settings_.certified};  // every time excluded
   }
@@ -134,10 +145,11 @@ class InclusionSolver {
     return {true, time.low, false, settings_.certified, time.high};
   }
 
-  // Narrows an interval holding a certain contact at the cubic's first root
+  // Narrows an interval with a certain root towards the cubic's first root
   // by halving on the cubic's signs alone: a root-free left half sends it
   // right, a certain sign change left, until `width` or a sign too close to
-  // call.
+  // call. What it drops on the left is root-free; on the right, whatever
+  // follows the returned interval.
   Interval narrow_to_first_root(Interval time, double width) const {
     while (time.width() > width) {
       const Interval left{time.low, time.middle()};
@@ -159,6 +171,11 @@ class InclusionSolver {
     // How much component `axis` of F changes along dimension d (0 t, 1 u, 2 v).
     double influence[3][3] = {};
   };
+
+  static void push(std::vector<Interval>& heap, const Interval& time) {
+    heap.push_back(time);
+    std::push_heap(heap.begin(), heap.end(), starts_later);
+  }
 
   static std::vector<Interval>& time_heap() {
     thread_local std::vector<Interval> buffer;
