@@ -296,14 +296,19 @@ template <class Arch, class Source>
   using Vector = typename L::Vector;
   using Bits = MagnitudeBits<Arch>;
 
-  Vector x[4][2];  // DESIGN.md's x_{k+1} at t = tau
-  Gather<Arch>::from(source, candidate, x);
   Vector relative[3][2];
+  {
+    // The positions die here: 24 registers that, kept for the rare scaled
+    // frame below, spilled to the stack throughout (it loads them again).
+    Vector x[4][2];  // DESIGN.md's x_{k+1} at t = tau
+    Gather<Arch>::from(source, candidate, x);
+    for (int i = 0; i < 3; ++i)
+      for (int tau = 0; tau < 2; ++tau) relative[i][tau] = x[i + 1][tau] - x[0][tau];
+  }
   Double largest[3][2];
   Index largest_bits[6];
   for (int i = 0; i < 3; ++i)
     for (int tau = 0; tau < 2; ++tau) {
-      relative[i][tau] = x[i + 1][tau] - x[0][tau];
       largest_bits[2 * i + tau] = Bits::largest(relative[i][tau]);
       largest[i][tau] = xsimd::bitwise_cast<Double>(largest_bits[2 * i + tau]);
     }
@@ -317,6 +322,8 @@ template <class Arch, class Source>
                                                             settings.certified, settings.subdivide));
   const std::uint32_t scaled_lanes = ~lane_bits<Arch>(direct) & lanes_in_use;
   if (scaled_lanes != 0) {
+    Vector x[4][2];
+    Gather<Arch>::from(source, candidate, x);
     const ScaledFrame<Arch> frame(x);
     Double scaled_largest[3][2];
     for (int i = 0; i < 3; ++i)
