@@ -280,56 +280,77 @@ struct ScaledFrame {
   }
 };
 
+// A group's differences x_{i+2}(tau) - x_1(tau) in the input's units, each
+// one's largest component magnitude, and the largest of all: the filters'
+// direct frames (reference::run_filters).
+template <class Arch>
+struct DirectDifferences {
+  using L = Lanes<Arch>;
+  using Double = typename L::Double;
+  using Index = typename L::Index;
+  using Bits = MagnitudeBits<Arch>;
+
+  typename L::Vector relative[3][2];
+  Double largest[3][2];
+  Double overall;
+
+  template <class Source>
+  DirectDifferences(const Source& source, const typename Gather<Arch>::Candidates& candidate) {
+    {
+      // The positions die here: 24 registers that, kept for the rare scaled
+      // frame, spilled to the stack throughout (it loads them again).
+      typename L::Vector x[4][2];  // DESIGN.md's x_{k+1} at t = tau
+      Gather<Arch>::from(source, candidate, x);
+      for (int i = 0; i < 3; ++i)
+        for (int tau = 0; tau < 2; ++tau) relative[i][tau] = x[i + 1][tau] - x[0][tau];
+    }
+    Index largest_bits[6];
+    for (int i = 0; i < 3; ++i)
+      for (int tau = 0; tau < 2; ++tau) {
+        largest_bits[2 * i + tau] = Bits::largest(relative[i][tau]);
+        largest[i][tau] = xsimd::bitwise_cast<Double>(largest_bits[2 * i + tau]);
+      }
+    overall = xsimd::bitwise_cast<Double>(
+        pairwise<6>(largest_bits, [](const Index& a, const Index& b) { return xsimd::max(a, b); }));
+  }
+
+  // Lanes whose largest lies in [lowest, highest] (so all finite).
+  typename L::Mask within(double lowest, double highest) const {
+    return (overall >= Double(lowest)) & (overall <= Double(highest));
+  }
+};
+
 // The sign filter over the candidates of `candidate`, `count` (<= lane
 // count) of them in use: bit k set when lane k is certainly (or,
 // uncertified, plainly) free of contact. Lanes past count are never culled.
 // Frames as in reference::run_filters: direct where the differences lie in
-// its window, scaled elsewhere (rare, so only groups with such a lane pay).
+// its window, scaled elsewhere (rare, so only groups with such a lane pay,
+// and load the positions again).
 template <class Arch, class Source>
 [[gnu::flatten]] std::uint32_t sign_culled_lanes(const Source& source,
                                                  const typename Gather<Arch>::Candidates& candidate,
                                                  std::size_t count, const reference::FilterSettings& settings) {
   using L = Lanes<Arch>;
   using Double = typename L::Double;
-  using Mask = typename L::Mask;
-  using Index = typename L::Index;
-  using Vector = typename L::Vector;
   using Bits = MagnitudeBits<Arch>;
 
-  Vector relative[3][2];
-  {
-    // The positions die here: 24 registers that, kept for the rare scaled
-    // frame below, spilled to the stack throughout (it loads them again).
-    Vector x[4][2];  // DESIGN.md's x_{k+1} at t = tau
-    Gather<Arch>::from(source, candidate, x);
-    for (int i = 0; i < 3; ++i)
-      for (int tau = 0; tau < 2; ++tau) relative[i][tau] = x[i + 1][tau] - x[0][tau];
-  }
-  Double largest[3][2];
-  Index largest_bits[6];
-  for (int i = 0; i < 3; ++i)
-    for (int tau = 0; tau < 2; ++tau) {
-      largest_bits[2 * i + tau] = Bits::largest(relative[i][tau]);
-      largest[i][tau] = xsimd::bitwise_cast<Double>(largest_bits[2 * i + tau]);
-    }
-  const Double overall = xsimd::bitwise_cast<Double>(
-      pairwise<6>(largest_bits, [](const Index& a, const Index& b) { return xsimd::max(a, b); }));
-  const Mask direct = (overall >= Double(reference::kDirectLowest)) & (overall <= Double(reference::kDirectHighest));
+  const DirectDifferences<Arch> differences(source, candidate);
+  const auto direct = differences.within(reference::kDirectLowest, reference::kDirectHighest);
   const std::uint32_t lanes_in_use = (1u << count) - 1;
-  std::uint32_t culled =
-      lane_bits<Arch>(direct & reference::sign_filter_culls(relative, largest,
-                                                            Double(reference::direct_coefficient_error().floor),
-                                                            settings.certified, settings.subdivide));
+  std::uint32_t culled = lane_bits<Arch>(
+      direct & reference::sign_filter_culls(differences.relative, differences.largest,
+                                            Double(reference::direct_coefficient_error().floor),
+                                            settings.certified, settings.subdivide));
   const std::uint32_t scaled_lanes = ~lane_bits<Arch>(direct) & lanes_in_use;
   if (scaled_lanes != 0) {
-    Vector x[4][2];
+    typename L::Vector x[4][2];
     Gather<Arch>::from(source, candidate, x);
     const ScaledFrame<Arch> frame(x);
     Double scaled_largest[3][2];
     for (int i = 0; i < 3; ++i)
       for (int tau = 0; tau < 2; ++tau)
         scaled_largest[i][tau] = xsimd::bitwise_cast<Double>(Bits::largest(frame.relative[i][tau]));
-    const Mask scaled_culled = reference::sign_filter_culls(
+    const auto scaled_culled = reference::sign_filter_culls(
         frame.relative, scaled_largest, reference::coefficient_floor(frame.absolute_error), settings.certified,
         settings.subdivide);
     culled |= scaled_lanes & lane_bits<Arch>(scaled_culled & frame.evaluable);
@@ -337,7 +358,7 @@ template <class Arch, class Source>
   return culled & lanes_in_use;
 }
 
-// The separation filter, likewise (always in the scaled frame).
+// The separation filter, likewise (its window is narrower).
 template <class Arch, class Source>
 [[gnu::flatten]] std::uint32_t separation_culled_lanes(const Source& source,
                                                        const typename Gather<Arch>::Candidates& candidate,
@@ -346,15 +367,31 @@ template <class Arch, class Source>
   using L = Lanes<Arch>;
   using Double = typename L::Double;
   using Mask = typename L::Mask;
-  typename L::Vector x[4][2];
-  Gather<Arch>::from(source, candidate, x);
-  const ScaledFrame<Arch> frame(x);
-  // reference::separation_error, lane by lane.
-  const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
-  const Mask enabled = settings.certified ? Mask(frame.absolute_error <= Double(0x1p-900)) : Mask(true);
-  const Mask culled = reference::separation_filter_culls(source.kind, frame.relative, Double(error.relative),
-                                                         Double(error.floor));
-  return lane_bits<Arch>(culled & enabled & frame.evaluable) & ((1u << count) - 1);
+  const std::uint32_t lanes_in_use = (1u << count) - 1;
+  std::uint32_t direct_lanes, culled;
+  {
+    const DirectDifferences<Arch> differences(source, candidate);
+    const Mask direct =
+        differences.within(reference::kSeparationDirectLowest, reference::kSeparationDirectHighest);
+    const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
+    direct_lanes = lane_bits<Arch>(direct);
+    culled = lane_bits<Arch>(direct & reference::separation_filter_culls(source.kind, differences.relative,
+                                                                        Double(error.relative),
+                                                                        Double(error.floor)));
+  }
+  const std::uint32_t scaled_lanes = ~direct_lanes & lanes_in_use;
+  if (scaled_lanes != 0) {
+    typename L::Vector x[4][2];
+    Gather<Arch>::from(source, candidate, x);
+    const ScaledFrame<Arch> frame(x);
+    // reference::separation_error, lane by lane.
+    const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
+    const Mask enabled = settings.certified ? Mask(frame.absolute_error <= Double(0x1p-900)) : Mask(true);
+    const Mask scaled_culled = reference::separation_filter_culls(source.kind, frame.relative,
+                                                                  Double(error.relative), Double(error.floor));
+    culled |= scaled_lanes & lane_bits<Arch>(scaled_culled & enabled & frame.evaluable);
+  }
+  return culled & lanes_in_use;
 }
 
 // Candidates [first, first + count) checked for ids the mesh does not have

@@ -133,32 +133,50 @@ TEST(SignFilter, CertifiedCullsAreASubsetOfPlainCulls) {
   EXPECT_GT(certified_culls, 0);
 }
 
-// The sign filter works in the direct frame (differences in the input's
-// units) inside its window and in the scaled frame outside it: scaling a
-// query by a power of two moves it across both edges of the window, and
-// generic queries keep their verdicts at every scale.
-TEST(SignFilter, VerdictsDoNotDependOnUnitsAcrossTheDirectFramesWindow) {
+// Each filter works in its direct frame (differences in the input's units)
+// inside its window and in the scaled frame outside it: scaling a query by a
+// power of two moves it across both edges of the window, and generic
+// queries keep their verdicts at every scale. Vertices move by up to
+// `motion` (coordinates in [-1, 1]).
+void expect_verdicts_independent_of_units(const FilterSettings& settings, double motion,
+                                          std::initializer_list<int> exponents) {
   std::mt19937_64 random(5);
   std::uniform_real_distribution<double> coordinate(-1, 1);
-  const FilterSettings sign_only{.certified = true, .sign = true, .subdivide = true, .separation = false};
   int culled = 0, kept = 0;
   for (int trial = 0; trial < 4000; ++trial) {
     Query query;
-    for (Vec3& p : query.points) p = Vec3(coordinate(random), coordinate(random), coordinate(random));
+    for (int k = 0; k < 4; ++k) {
+      query.points[k] = Vec3(coordinate(random), coordinate(random), coordinate(random));
+      query.points[k + 4] =
+          query.points[k] + motion * Vec3(coordinate(random), coordinate(random), coordinate(random));
+    }
     for (Kind kind : {Kind::vertex_face, Kind::edge_edge}) {
-      const bool verdict = run_filters(kind, query, sign_only).sign;
+      const bool verdict = run_filters(kind, query, settings).culled();
       (verdict ? culled : kept) += 1;
-      // Differences up to 2: scale 2^199 puts the largest near the window's
-      // top, 2^-201 near its bottom; 2^600 and 2^-600 well outside.
-      for (int exponent : {-1000, -600, -202, -201, -200, -199, 197, 198, 199, 200, 600, 1000}) {
+      for (int exponent : exponents) {
         Query scaled = query;
         for (Vec3& p : scaled.points) p *= std::ldexp(1.0, exponent);
-        EXPECT_EQ(run_filters(kind, scaled, sign_only).sign, verdict) << "trial " << trial << ", 2^" << exponent;
+        EXPECT_EQ(run_filters(kind, scaled, settings).culled(), verdict)
+            << "trial " << trial << ", 2^" << exponent;
       }
     }
   }
   EXPECT_GT(culled, 1000);
   EXPECT_GT(kept, 1000);
+}
+
+TEST(SignFilter, VerdictsDoNotDependOnUnitsAcrossTheDirectFramesWindow) {
+  // Differences up to 4: scale 2^198 puts the largest near the window's
+  // top, 2^-201 near its bottom; 2^600 and 2^-600 well outside.
+  expect_verdicts_independent_of_units({.sign = true, .separation = false}, 2.0,
+                                       {-1000, -600, -202, -201, -200, -199, 197, 198, 199, 200, 600, 1000});
+}
+
+TEST(SeparationFilter, VerdictsDoNotDependOnUnitsAcrossTheDirectFramesWindow) {
+  // Its window is [2^-40, 2^40] (differences up to 3.2); 2^-190 and 2^190
+  // would underflow or overflow in it.
+  expect_verdicts_independent_of_units({.sign = false, .separation = true}, 0.6,
+                                       {-1000, -600, -190, -100, -42, -41, -40, -39, 37, 38, 39, 40, 100, 190, 600, 1000});
 }
 
 TEST(InclusionSolver, FindsTheCrossingTime) {

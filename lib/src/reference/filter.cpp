@@ -14,12 +14,14 @@ namespace {
 
 Vector3<double> as_vector(const Vec3& v) { return {v[0], v[1], v[2]}; }
 
-// A query's differences in its own units, for the sign filter's direct
-// frame (error_bounds.hpp: direct_coefficient_error).
+// A query's differences in its own units, for the filters' direct frames
+// (error_bounds.hpp: direct_coefficient_error; separation_filter.hpp).
 struct DirectFrame {
   Vector3<double> relative[3][2];  // x_{i+2}(tau) - x_1(tau)
   double largest[3][2];            // each one's largest_magnitude
-  bool applies = false;            // all within the window (so all finite)
+  double overall = 0;              // the largest of all (a NaN if there is one)
+  // All within [lowest, highest] (so all finite).
+  bool within(double lowest, double highest) const { return overall >= lowest && overall <= highest; }
 };
 
 DirectFrame direct_frame(Kind kind, const Query& query) {
@@ -33,8 +35,7 @@ DirectFrame direct_frame(Kind kind, const Query& query) {
       largest = std::max(largest, magnitude_bits(frame.largest[i][tau]));
     }
   }
-  const double overall = std::bit_cast<double>(largest);
-  frame.applies = overall >= kDirectLowest && overall <= kDirectHighest;
+  frame.overall = std::bit_cast<double>(largest);
   return frame;
 }
 
@@ -56,26 +57,33 @@ SeparationErrorModel separation_error(double absolute_error, bool certified) {
   if (!certified) return {0.0, 0.0, true};
   // Factors carry absolute_error each; through expressions of degree <= 6 in
   // values below 4 with fewer than 2^10 terms, that stays below 2^-880 as long
-  // as absolute_error <= 2^-900, and so does underflow: a floor of 2^-800.
-  return {SeparationErrors::relative, 0x1p-800, absolute_error <= 0x1p-900};
+  // as absolute_error <= 2^-900, and so does underflow: SeparationErrors::floor.
+  return {SeparationErrors::relative, SeparationErrors::floor, absolute_error <= 0x1p-900};
 }
+
+// The separation filter's window lies within the sign filter's: a query in
+// it needs no scaled frame at all.
+static_assert(kSeparationDirectLowest >= kDirectLowest && kSeparationDirectHighest <= kDirectHighest);
 
 FilterVerdict run_filters(Kind kind, const Query& query, const FilterSettings& settings) {
   FilterVerdict verdict;
-  // The sign filter in the direct frame where it applies (nearly always):
+  // Each filter in its direct frame where that applies (nearly always):
   // most queries end there, without the scaled frame's normalisation.
   const DirectFrame direct = direct_frame(kind, query);
-  if (settings.sign && direct.applies) {
-    verdict.sign = sign_filter_culls(direct.relative, direct.largest,
-                                     direct_coefficient_error().floor, settings.certified,
-                                     settings.subdivide);
-    if (verdict.sign || !settings.separation) return verdict;
+  const bool sign_scaled = settings.sign && !direct.within(kDirectLowest, kDirectHighest);
+  if (settings.sign && !sign_scaled)
+    verdict.sign = sign_filter_culls(direct.relative, direct.largest, direct_coefficient_error().floor,
+                                     settings.certified, settings.subdivide);
+  const bool separation_due = settings.separation && !verdict.sign;
+  if (separation_due && direct.within(kSeparationDirectLowest, kSeparationDirectHighest)) {
+    const SeparationErrorModel error = separation_error(0.0, settings.certified);
+    verdict.separation = separation_filter_culls(kind, direct.relative, error.relative, error.floor);
+    return verdict;
   }
-  const bool sign_in_scaled_frame = settings.sign && !direct.applies;
-  if (!sign_in_scaled_frame && !settings.separation) return verdict;
+  if (!sign_scaled && !separation_due) return verdict;
   const ScaledQuery scaled = scale_query(kind, query);
   if (!scaled.finite || scaled.coincident) return verdict;  // for the solver's own checks
-  if (sign_in_scaled_frame) verdict.sign = sign_filter_culls(scaled, settings.certified, settings.subdivide);
+  if (sign_scaled) verdict.sign = sign_filter_culls(scaled, settings.certified, settings.subdivide);
   if (settings.separation && !verdict.sign) {
     const SeparationErrorModel error = separation_error(scaled.absolute_error, settings.certified);
     Vector3<double> relative[3][2];

@@ -36,7 +36,22 @@ struct SeparationErrors {
   static constexpr double relative = 64 * kUnitRoundoff;
   static constexpr double shrink = 1 - 8 * kUnitRoundoff;  // a squared ratio's rounding
   static constexpr double grow = 1 + 8 * kUnitRoundoff;
+  // Absolute floor of every bound, for underflow: bounds are taken on
+  // expressions of degree <= 6 with fewer than 2^10 terms, so an underflow
+  // (at most 2^-1074) magnified by at most five later factors stays below
+  // 2^-864 as long as the factors stay below 2^42 (four times the largest
+  // difference, the largest sum of two, in either frame below).
+  static constexpr double floor = 0x1p-800;
 };
+
+// The filter may run on a query's differences in its own units (no scaled
+// frame: the same decisions up to the floor, as scaling by a power of two
+// is exact) when the largest difference component lies in this window:
+// above, factors could magnify an underflow past the floor; below, the
+// floor would start to cost culls. Differences of doubles carry one
+// rounding and no absolute error (a difference that underflows is exact).
+inline constexpr double kSeparationDirectLowest = 0x1p-40;
+inline constexpr double kSeparationDirectHighest = 0x1p40;
 
 // A lower bound of max(0, numerator)^2 / denominator (denominator >= 0 in
 // exact arithmetic), given their magnitudes; `floor` is the absolute error
