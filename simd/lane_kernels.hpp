@@ -320,20 +320,58 @@ struct DirectDifferences {
   }
 };
 
+// The sign filter's verdicts in the scaled frame (reference::run_filters):
+// bit k set when lane k is certainly free of contact there. Rare, so out of
+// line, where it costs the common path no registers; it loads the
+// positions again.
+template <class Arch, class Source>
+[[gnu::noinline, gnu::flatten]] std::uint32_t sign_culled_in_scaled_frame(
+    const Source& source, const typename Gather<Arch>::Candidates& candidate,
+    const reference::FilterSettings& settings) {
+  using L = Lanes<Arch>;
+  using Double = typename L::Double;
+  typename L::Vector x[4][2];
+  Gather<Arch>::from(source, candidate, x);
+  const ScaledFrame<Arch> frame(x);
+  Double largest[3][2];
+  for (int i = 0; i < 3; ++i)
+    for (int tau = 0; tau < 2; ++tau)
+      largest[i][tau] = xsimd::bitwise_cast<Double>(MagnitudeBits<Arch>::largest(frame.relative[i][tau]));
+  const auto culled = reference::sign_filter_culls(frame.relative, largest,
+                                                   reference::coefficient_floor(frame.absolute_error),
+                                                   settings.certified, settings.subdivide);
+  return lane_bits<Arch>(culled & frame.evaluable);
+}
+
+// The separation filter's, likewise.
+template <class Arch, class Source>
+[[gnu::noinline, gnu::flatten]] std::uint32_t separation_culled_in_scaled_frame(
+    const Source& source, const typename Gather<Arch>::Candidates& candidate,
+    const reference::FilterSettings& settings) {
+  using L = Lanes<Arch>;
+  using Double = typename L::Double;
+  using Mask = typename L::Mask;
+  typename L::Vector x[4][2];
+  Gather<Arch>::from(source, candidate, x);
+  const ScaledFrame<Arch> frame(x);
+  // reference::separation_error, lane by lane.
+  const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
+  const Mask enabled = settings.certified ? Mask(frame.absolute_error <= Double(0x1p-900)) : Mask(true);
+  const Mask culled = reference::separation_filter_culls(source.kind, frame.relative, Double(error.relative),
+                                                         Double(error.floor));
+  return lane_bits<Arch>(culled & enabled & frame.evaluable);
+}
+
 // The sign filter over the candidates of `candidate`, `count` (<= lane
 // count) of them in use: bit k set when lane k is certainly (or,
 // uncertified, plainly) free of contact. Lanes past count are never culled.
 // Frames as in reference::run_filters: direct where the differences lie in
-// its window, scaled elsewhere (rare, so only groups with such a lane pay,
-// and load the positions again).
+// its window, scaled elsewhere (rare: only groups with such a lane pay).
 template <class Arch, class Source>
 [[gnu::flatten]] std::uint32_t sign_culled_lanes(const Source& source,
                                                  const typename Gather<Arch>::Candidates& candidate,
                                                  std::size_t count, const reference::FilterSettings& settings) {
-  using L = Lanes<Arch>;
-  using Double = typename L::Double;
-  using Bits = MagnitudeBits<Arch>;
-
+  using Double = typename Lanes<Arch>::Double;
   const DirectDifferences<Arch> differences(source, candidate);
   const auto direct = differences.within(reference::kDirectLowest, reference::kDirectHighest);
   const std::uint32_t lanes_in_use = (1u << count) - 1;
@@ -342,19 +380,7 @@ template <class Arch, class Source>
                                             Double(reference::direct_coefficient_error().floor),
                                             settings.certified, settings.subdivide));
   const std::uint32_t scaled_lanes = ~lane_bits<Arch>(direct) & lanes_in_use;
-  if (scaled_lanes != 0) {
-    typename L::Vector x[4][2];
-    Gather<Arch>::from(source, candidate, x);
-    const ScaledFrame<Arch> frame(x);
-    Double scaled_largest[3][2];
-    for (int i = 0; i < 3; ++i)
-      for (int tau = 0; tau < 2; ++tau)
-        scaled_largest[i][tau] = xsimd::bitwise_cast<Double>(Bits::largest(frame.relative[i][tau]));
-    const auto scaled_culled = reference::sign_filter_culls(
-        frame.relative, scaled_largest, reference::coefficient_floor(frame.absolute_error), settings.certified,
-        settings.subdivide);
-    culled |= scaled_lanes & lane_bits<Arch>(scaled_culled & frame.evaluable);
-  }
+  if (scaled_lanes != 0) culled |= scaled_lanes & sign_culled_in_scaled_frame<Arch>(source, candidate, settings);
   return culled & lanes_in_use;
 }
 
@@ -364,33 +390,17 @@ template <class Arch, class Source>
                                                        const typename Gather<Arch>::Candidates& candidate,
                                                        std::size_t count,
                                                        const reference::FilterSettings& settings) {
-  using L = Lanes<Arch>;
-  using Double = typename L::Double;
-  using Mask = typename L::Mask;
+  using Double = typename Lanes<Arch>::Double;
+  const DirectDifferences<Arch> differences(source, candidate);
+  const auto direct = differences.within(reference::kSeparationDirectLowest, reference::kSeparationDirectHighest);
+  const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
   const std::uint32_t lanes_in_use = (1u << count) - 1;
-  std::uint32_t direct_lanes, culled;
-  {
-    const DirectDifferences<Arch> differences(source, candidate);
-    const Mask direct =
-        differences.within(reference::kSeparationDirectLowest, reference::kSeparationDirectHighest);
-    const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
-    direct_lanes = lane_bits<Arch>(direct);
-    culled = lane_bits<Arch>(direct & reference::separation_filter_culls(source.kind, differences.relative,
-                                                                        Double(error.relative),
-                                                                        Double(error.floor)));
-  }
-  const std::uint32_t scaled_lanes = ~direct_lanes & lanes_in_use;
-  if (scaled_lanes != 0) {
-    typename L::Vector x[4][2];
-    Gather<Arch>::from(source, candidate, x);
-    const ScaledFrame<Arch> frame(x);
-    // reference::separation_error, lane by lane.
-    const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
-    const Mask enabled = settings.certified ? Mask(frame.absolute_error <= Double(0x1p-900)) : Mask(true);
-    const Mask scaled_culled = reference::separation_filter_culls(source.kind, frame.relative,
-                                                                  Double(error.relative), Double(error.floor));
-    culled |= scaled_lanes & lane_bits<Arch>(scaled_culled & enabled & frame.evaluable);
-  }
+  std::uint32_t culled = lane_bits<Arch>(
+      direct & reference::separation_filter_culls(source.kind, differences.relative, Double(error.relative),
+                                                  Double(error.floor)));
+  const std::uint32_t scaled_lanes = ~lane_bits<Arch>(direct) & lanes_in_use;
+  if (scaled_lanes != 0)
+    culled |= scaled_lanes & separation_culled_in_scaled_frame<Arch>(source, candidate, settings);
   return culled & lanes_in_use;
 }
 
