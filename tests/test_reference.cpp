@@ -166,8 +166,10 @@ void expect_verdicts_independent_of_units(const FilterSettings& settings, double
 }
 
 TEST(SignFilter, VerdictsDoNotDependOnUnitsAcrossTheDirectFramesWindow) {
-  // Differences up to 4: scale 2^198 puts the largest near the window's
-  // top, 2^-201 near its bottom; 2^600 and 2^-600 well outside.
+  // Differences up to 6, most of them above 1: scales 2^197 to 2^200 put
+  // the largest about the window's top, 2^-202 to 2^-199 about its bottom;
+  // 2^600 and 2^-600 well outside. (Fails when the direct frame's floor is
+  // too large for the bottom of the window.)
   expect_verdicts_independent_of_units({.sign = true, .separation = false}, 2.0,
                                        {-1000, -600, -202, -201, -200, -199, 197, 198, 199, 200, 600, 1000});
 }
