@@ -244,7 +244,16 @@ struct ScaledFrame {
   Double absolute_error;
   Mask evaluable;  // finite and not coincident: the filters may cull
 
-  explicit ScaledFrame(Vector (&x)[4][2]) {
+  // A group's positions loaded again (the kernels keep only differences).
+  template <class Source>
+  ScaledFrame(const Source& source, const typename Gather<Arch>::Candidates& candidate) {
+    Vector x[4][2];
+    Gather<Arch>::from(source, candidate, x);
+    scale(x);
+  }
+
+ private:
+  void scale(Vector (&x)[4][2]) {
     Index magnitude[24];
     for (int j = 0; j < 8; ++j) {
       const Vector& p = (&x[0][0])[j];
@@ -328,11 +337,8 @@ template <class Arch, class Source>
 [[gnu::noinline, gnu::flatten]] std::uint32_t sign_culled_in_scaled_frame(
     const Source& source, const typename Gather<Arch>::Candidates& candidate,
     const reference::FilterSettings& settings) {
-  using L = Lanes<Arch>;
-  using Double = typename L::Double;
-  typename L::Vector x[4][2];
-  Gather<Arch>::from(source, candidate, x);
-  const ScaledFrame<Arch> frame(x);
+  using Double = typename Lanes<Arch>::Double;
+  const ScaledFrame<Arch> frame(source, candidate);
   Double largest[3][2];
   for (int i = 0; i < 3; ++i)
     for (int tau = 0; tau < 2; ++tau)
@@ -348,12 +354,9 @@ template <class Arch, class Source>
 [[gnu::noinline, gnu::flatten]] std::uint32_t separation_culled_in_scaled_frame(
     const Source& source, const typename Gather<Arch>::Candidates& candidate,
     const reference::FilterSettings& settings) {
-  using L = Lanes<Arch>;
-  using Double = typename L::Double;
-  using Mask = typename L::Mask;
-  typename L::Vector x[4][2];
-  Gather<Arch>::from(source, candidate, x);
-  const ScaledFrame<Arch> frame(x);
+  using Double = typename Lanes<Arch>::Double;
+  using Mask = typename Lanes<Arch>::Mask;
+  const ScaledFrame<Arch> frame(source, candidate);
   // reference::separation_error, lane by lane.
   const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
   const Mask enabled = settings.certified ? Mask(frame.absolute_error <= Double(0x1p-900)) : Mask(true);
