@@ -131,6 +131,7 @@ void filter_mesh(benchmark::State& state, Isa isa, Kind kind) {
   const simd::PackedPositions packed(view.positions_t0.data(), view.positions_t1.data(),
                                     view.positions_t0.rows());
   const simd::MeshPositions positions = packed.view();
+  const simd::PackedFaces faces(view.faces.data(), view.faces.rows());
   const std::size_t count = kind == Kind::vertex_face ? data.candidates.vertex_face.size()
                                                       : data.candidates.edge_edge.size();
   std::vector<std::uint32_t> survivors(count);
@@ -139,7 +140,7 @@ void filter_mesh(benchmark::State& state, Isa isa, Kind kind) {
   for (auto _ : state) {
     kept = in_batches(count, [&](std::size_t begin, std::size_t end) {
       return kind == Kind::vertex_face
-                 ? kernels->vertex_face({positions, view.faces.data(), view.faces.rows(),
+                 ? kernels->vertex_face({positions, faces.rows(), view.faces.rows(),
                                          data.candidates.vertex_face.data()},
                                         begin, end, settings(state), survivors.data(), counts)
                  : kernels->edge_edge({positions, data.candidates.edge_edge.data()}, begin, end,

@@ -211,7 +211,8 @@ void mesh_ccd(const MeshView& mesh, const Candidates& candidates, const Options&
                         packed.pack(mesh.positions_t0.data(), mesh.positions_t1.data(), rows.begin(),
                                     rows.end());
                       });
-    const simd::MeshVertexFace vertex_face_source{packed.view(), mesh.faces.data(), mesh.faces.rows(),
+    const simd::PackedFaces faces(mesh.faces.data(), vertex_face > 0 ? mesh.faces.rows() : 0);
+    const simd::MeshVertexFace vertex_face_source{packed.view(), faces.rows(), mesh.faces.rows(),
                                                   candidates.vertex_face.data()};
     const simd::MeshEdgeEdge edge_edge_source{packed.view(), candidates.edge_edge.data()};
     Partials partials;

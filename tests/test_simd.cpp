@@ -167,7 +167,8 @@ TEST(SimdKernels, MatchTheReferenceFilterOnMeshIndexLists) {
   for (auto& e : ee) e = {vertex(random), vertex(random), vertex(random), vertex(random)};
   const simd::PackedPositions packed(t0.data(), t1.data(), vertices);
   const simd::MeshPositions positions = packed.view();
-  const simd::MeshVertexFace vf_source{positions, face_matrix.data(), faces, vf.data()};
+  const simd::PackedFaces packed_faces(face_matrix.data(), faces);
+  const simd::MeshVertexFace vf_source{positions, packed_faces.rows(), faces, vf.data()};
   const simd::MeshEdgeEdge ee_source{positions, ee.data()};
   for (const reference::FilterSettings& settings : all_settings()) {
     const auto vf_expected = survivors(simd::kScalarKernels.vertex_face, vf_source, 1, pairs, settings);
