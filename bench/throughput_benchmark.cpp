@@ -140,9 +140,8 @@ void filter_mesh(benchmark::State& state, Isa isa, Kind kind) {
   for (auto _ : state) {
     kept = in_batches(count, [&](std::size_t begin, std::size_t end) {
       return kind == Kind::vertex_face
-                 ? kernels->vertex_face({positions, faces.rows(), view.faces.rows(),
-                                         data.candidates.vertex_face.data()},
-                                        begin, end, settings(state), survivors.data(), counts)
+                 ? kernels->vertex_face({positions, faces.view(), data.candidates.vertex_face.data()}, begin,
+                                        end, settings(state), survivors.data(), counts)
                  : kernels->edge_edge({positions, data.candidates.edge_edge.data()}, begin, end,
                                       settings(state), survivors.data(), counts);
     });

@@ -211,9 +211,9 @@ void mesh_ccd(const MeshView& mesh, const Candidates& candidates, const Options&
                         packed.pack(mesh.positions_t0.data(), mesh.positions_t1.data(), rows.begin(),
                                     rows.end());
                       });
+    // Faces only where the vertex-face list is read.
     const simd::PackedFaces faces(mesh.faces.data(), vertex_face > 0 ? mesh.faces.rows() : 0);
-    const simd::MeshVertexFace vertex_face_source{packed.view(), faces.rows(), mesh.faces.rows(),
-                                                  candidates.vertex_face.data()};
+    const simd::MeshVertexFace vertex_face_source{packed.view(), faces.view(), candidates.vertex_face.data()};
     const simd::MeshEdgeEdge edge_edge_source{packed.view(), candidates.edge_edge.data()};
     Partials partials;
     std::vector<std::size_t> vertex_face_survivors, edge_edge_survivors;

@@ -447,7 +447,7 @@ void check_ids(const MeshVertexFace& mesh, std::size_t first, std::size_t count)
   }
   const Pairs pair = Pairs::load_unaligned(reinterpret_cast<const std::uint64_t*>(mesh.pairs[first].data()));
   if (xsimd::any(((pair & Pairs(0xffffffffu)) >= Pairs(id_limit(mesh.positions.vertices))) |
-                 ((pair >> 32) >= Pairs(id_limit(mesh.face_rows)))))
+                 ((pair >> 32) >= Pairs(id_limit(mesh.faces.count)))))
     throw IndexOutOfRange{};
 }
 

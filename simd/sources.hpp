@@ -5,8 +5,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
-#include <vector>
 #include <new>
+#include <vector>
 
 #include "batchccd/query.hpp"
 #include "reference/scaled_query.hpp"
@@ -71,16 +71,24 @@ class PackedPositions {
   std::unique_ptr<double[], Free> rows_;
 };
 
-// Faces as rows of four ints (three vertex ids and a zero), made from
-// Eigen's column-major m x 3 matrix once per call: a lane reads its face's
-// ids from one place instead of three columns apart.
+// Faces, one row of four ints per face: its three vertex ids and a zero.
+struct MeshFaces {
+  const int* rows;
+  std::int64_t count;
+};
+
+// Owns the rows of MeshFaces, made from Eigen's column-major m x 3 matrix
+// once per call: a lane reads its face's ids from one place instead of
+// three columns apart.
 class PackedFaces {
  public:
   PackedFaces(const int* columns, std::int64_t faces) : rows_(static_cast<std::size_t>(faces)) {
     for (std::int64_t f = 0; f < faces; ++f)
       rows_[static_cast<std::size_t>(f)] = {columns[f], columns[f + faces], columns[f + 2 * faces], 0};
   }
-  const int* rows() const { return rows_.empty() ? nullptr : rows_.front().data(); }
+  MeshFaces view() const {
+    return {rows_.empty() ? nullptr : rows_.front().data(), static_cast<std::int64_t>(rows_.size())};
+  }
 
  private:
   std::vector<std::array<int, 4>> rows_;
@@ -89,8 +97,7 @@ class PackedFaces {
 struct MeshVertexFace {
   static constexpr Kind kind = Kind::vertex_face;
   MeshPositions positions;
-  const int* faces;  // PackedFaces' rows, m x 4
-  std::int64_t face_rows;
+  MeshFaces faces;
   const std::array<int, 2>* pairs;  // vertex, face
 };
 
@@ -121,10 +128,10 @@ template <bool check = true>
 [[gnu::always_inline]] inline std::array<std::int64_t, 4> vertex_ids(const MeshVertexFace& mesh, std::size_t i) {
   const auto [vertex, face] = mesh.pairs[i];
   if constexpr (check) {
-    const int* f = mesh.faces + 4 * checked(face, mesh.face_rows);
+    const int* f = mesh.faces.rows + 4 * checked(face, mesh.faces.count);
     return {f[0], f[1], f[2], checked(vertex, mesh.positions.vertices)};
   } else {
-    const int* f = mesh.faces + 4 * static_cast<std::int64_t>(face);
+    const int* f = mesh.faces.rows + 4 * static_cast<std::int64_t>(face);
     return {f[0], f[1], f[2], vertex};
   }
 }

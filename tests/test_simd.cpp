@@ -168,7 +168,7 @@ TEST(SimdKernels, MatchTheReferenceFilterOnMeshIndexLists) {
   const simd::PackedPositions packed(t0.data(), t1.data(), vertices);
   const simd::MeshPositions positions = packed.view();
   const simd::PackedFaces packed_faces(face_matrix.data(), faces);
-  const simd::MeshVertexFace vf_source{positions, packed_faces.rows(), faces, vf.data()};
+  const simd::MeshVertexFace vf_source{positions, packed_faces.view(), vf.data()};
   const simd::MeshEdgeEdge ee_source{positions, ee.data()};
   for (const reference::FilterSettings& settings : all_settings()) {
     const auto vf_expected = survivors(simd::kScalarKernels.vertex_face, vf_source, 1, pairs, settings);
