@@ -104,11 +104,21 @@ std::vector<Method> compared_methods() {
 std::string_view name_of(Method method) { return entry(method).name; }
 std::string_view description_of(Method method) { return entry(method).description; }
 
+double fastest_of(int runs, const std::function<void()>& work) {
+  double fastest = 0;
+  for (int k = 0; k < std::max(runs, 1); ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    work();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    fastest = k == 0 ? seconds : std::min(fastest, seconds);
+  }
+  return fastest;
+}
+
 MethodRun run_method(Method method, const Workload& workload, int threads, int runs) {
   MethodRun run;
   std::vector<Hit> hits;
-  for (int k = 0; k < std::max(runs, 1); ++k) {
-    const auto start = std::chrono::steady_clock::now();
+  run.seconds = fastest_of(runs, [&] {
     if (method == Method::fcl) {
       hits = run_fcl(workload, threads);
     } else {
@@ -116,9 +126,7 @@ MethodRun run_method(Method method, const Workload& workload, int threads, int r
       hits = std::move(batch.hits);
       run.culled = batch.counters.culled;
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    run.seconds = k == 0 ? seconds : std::min(run.seconds, seconds);
-  }
+  });
   run.results = dense_results(hits, workload.size());
   return run;
 }

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -33,9 +34,13 @@ struct MethodRun {
   std::int64_t culled = 0;  // candidates the lane filters removed (0 without filters)
 };
 
+// Seconds of the fastest of `runs` (at least 1) calls of `work`: a busy
+// machine only ever adds time.
+double fastest_of(int runs, const std::function<void()>& work);
+
 // Runs `method` on every candidate with `threads` workers (0: all), `runs`
-// times: the time is the fastest run's (a busy machine only ever adds
-// time), the answers the last run's.
+// times: the time is the fastest run's (fastest_of), the answers the last
+// run's.
 MethodRun run_method(Method method, const Workload& workload, int threads, int runs = 1);
 
 // A method's figures, summed over the workloads added.

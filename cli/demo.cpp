@@ -114,18 +114,13 @@ void time_costs(const Workload& workload, int threads, std::vector<CostVariant>&
     Options options;
     options.threads = threads;
     variant.ask(options);
-    double fastest = 0;
-    for (int run = 0; run < kTimedRuns; ++run) {
-      const auto start = std::chrono::steady_clock::now();
+    variant.seconds += fastest_of(kTimedRuns, [&] {
       if (variant.into_last_result) {
         workload.run(options, variant.last);
       } else {
         workload.run(options);
       }
-      const double seconds = seconds_since(start);
-      fastest = run == 0 ? seconds : std::min(fastest, seconds);
-    }
-    variant.seconds += fastest;
+    });
   }
 }
 
