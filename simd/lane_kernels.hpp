@@ -60,15 +60,44 @@ struct Lanes {
   }
 };
 
-// Loads candidate `candidate[j]` of a source into lane j of x[k][tau]
-// (DESIGN.md's x_{k+1} at t = tau).
+// Which candidate each lane of a group evaluates: group[j] for lane j. A
+// group of consecutive candidates (the first pass's full groups) says so in
+// its type: raw queries then load whole rows and transpose, and a mesh's ids
+// lie at fixed offsets. Any other group lists its candidates (a partial
+// group's spare lanes repeat its last one, so the ends of a list tell
+// nothing about what lies between them).
+template <class Arch>
+struct ListedGroup {
+  std::int64_t candidate[Lanes<Arch>::size];
+  std::int64_t operator[](std::size_t j) const { return candidate[j]; }
+};
+template <class Arch>
+struct ConsecutiveGroup {
+  std::int64_t first;
+  std::int64_t operator[](std::size_t j) const { return first + static_cast<std::int64_t>(j); }
+};
+
+// Any group as a list: the rare scaled frame takes lists only (one copy of
+// its code, not one per kind of group).
+template <class Arch>
+const ListedGroup<Arch>& listed(const ListedGroup<Arch>& group) {
+  return group;
+}
+template <class Arch>
+ListedGroup<Arch> listed(const ConsecutiveGroup<Arch>& group) {
+  ListedGroup<Arch> list;
+  for (std::size_t j = 0; j < Lanes<Arch>::size; ++j) list.candidate[j] = group[j];
+  return list;
+}
+
+// Loads candidate group[j] of a source into lane j of x[k][tau] (DESIGN.md's
+// x_{k+1} at t = tau).
 template <class Arch>
 struct Gather {
   using L = Lanes<Arch>;
   using Double = typename L::Double;
   using Index = typename L::Index;
   using Vector = typename L::Vector;
-  using Candidates = std::int64_t[L::size];
 
   // The processor's gather instruction where it has one (xsimd 8.1 loads
   // lane by lane).
@@ -84,47 +113,54 @@ struct Gather {
 
   using Rows = const double* [L::size];
   static constexpr std::size_t kPrefetchQueries = 32;  // 6 KB
+  static constexpr int kQueryDoubles = 24;
 
-  static void from(const RawQueries& raw, const Candidates& candidate, Vector (&x)[4][2]) {
-    const double* data = raw.queries[0].points[0].data();
-    constexpr int doubles_per_query = 24;
-    Double coordinate[doubles_per_query];
-    // Consecutive queries (indices only ever increase) lie in one block of
-    // rows: loads and transposes. Otherwise gathers.
-    if (candidate[L::size - 1] - candidate[0] == static_cast<std::int64_t>(L::size - 1)) {
-      // Streamed queries: ask for those kPrefetchQueries ahead now, so their
-      // cache lines arrive while these compute (the hardware's prefetcher
-      // alone left half the read bandwidth unused). An address, never
-      // dereferenced: past the end of the queries it is harmless.
-      const std::uintptr_t ahead =
-          reinterpret_cast<std::uintptr_t>(data + candidate[0] * doubles_per_query) +
-          kPrefetchQueries * doubles_per_query * sizeof(double);
-      for (std::size_t line = 0; line < L::size * doubles_per_query * sizeof(double); line += 64)
-        _mm_prefetch(reinterpret_cast<const char*>(ahead + line), _MM_HINT_T0);
-      for (std::size_t block = 0; block < doubles_per_query; block += L::size) {
-        Rows rows;
-        for (std::size_t j = 0; j < L::size; ++j) rows[j] = data + (candidate[0] + j) * doubles_per_query + block;
-        transpose(rows, coordinate + block);
-      }
-    } else {
-      alignas(64) std::int64_t offset[L::size];
-      for (std::size_t j = 0; j < L::size; ++j) offset[j] = candidate[j] * doubles_per_query;
-      const Index index = Index::load_aligned(offset);
-      for (int c = 0; c < doubles_per_query; ++c) coordinate[c] = gather(data + c, index);
+  // Consecutive raw queries lie in one block of rows: loads and transposes.
+  static void from(const RawQueries& raw, const ConsecutiveGroup<Arch>& group, Vector (&x)[4][2]) {
+    const double* data = raw.queries[0].points[0].data() + group.first * kQueryDoubles;
+    // Streamed queries: ask for those kPrefetchQueries ahead now, so their
+    // cache lines arrive while these compute (the hardware's prefetcher
+    // alone left half the read bandwidth unused). An address, never
+    // dereferenced: past the end of the queries it is harmless.
+    const std::uintptr_t ahead =
+        reinterpret_cast<std::uintptr_t>(data) + kPrefetchQueries * kQueryDoubles * sizeof(double);
+    for (std::size_t line = 0; line < L::size * kQueryDoubles * sizeof(double); line += 64)
+      _mm_prefetch(reinterpret_cast<const char*>(ahead + line), _MM_HINT_T0);
+    Double coordinate[kQueryDoubles];
+    for (std::size_t block = 0; block < kQueryDoubles; block += L::size) {
+      Rows rows;
+      for (std::size_t j = 0; j < L::size; ++j) rows[j] = data + j * kQueryDoubles + block;
+      transpose(rows, coordinate + block);
     }
+    points(raw.kind, coordinate, x);
+  }
+
+  // Any others: gathers.
+  static void from(const RawQueries& raw, const ListedGroup<Arch>& group, Vector (&x)[4][2]) {
+    const double* data = raw.queries[0].points[0].data();
+    alignas(64) std::int64_t offset[L::size];
+    for (std::size_t j = 0; j < L::size; ++j) offset[j] = group[j] * kQueryDoubles;
+    const Index index = Index::load_aligned(offset);
+    Double coordinate[kQueryDoubles];
+    for (int c = 0; c < kQueryDoubles; ++c) coordinate[c] = gather(data + c, index);
+    points(raw.kind, coordinate, x);
+  }
+
+  // A query's coordinates in its points' order into x.
+  static void points(Kind kind, const Double (&coordinate)[kQueryDoubles], Vector (&x)[4][2]) {
     for (int k = 1; k <= 4; ++k)
       for (int tau = 0; tau < 2; ++tau) {
-        const Double* c = coordinate + 3 * (reference::point_index(raw.kind, k) + 4 * tau);
+        const Double* c = coordinate + 3 * (reference::point_index(kind, k) + 4 * tau);
         x[k - 1][tau] = {c[0], c[1], c[2]};
       }
   }
 
-  template <class MeshSource>
-  static void from(const MeshSource& mesh, const Candidates& candidate, Vector (&x)[4][2]) {
+  template <class MeshSource, class Group>
+  static void from(const MeshSource& mesh, const Group& group, Vector (&x)[4][2]) {
     alignas(64) std::int64_t ids[4][L::size];
     for (std::size_t j = 0; j < L::size; ++j) {
       // Unchecked: filter_range checked them (check_ids) before this group.
-      const auto vertices = vertex_ids<false>(mesh, static_cast<std::size_t>(candidate[j]));
+      const auto vertices = vertex_ids<false>(mesh, static_cast<std::size_t>(group[j]));
       for (int k = 0; k < 4; ++k) ids[k][j] = vertices[k];
     }
     const double* packed = mesh.positions.rows;
@@ -246,9 +282,9 @@ struct ScaledFrame {
 
   // A group's positions loaded again (the kernels keep only differences).
   template <class Source>
-  ScaledFrame(const Source& source, const typename Gather<Arch>::Candidates& candidate) {
+  ScaledFrame(const Source& source, const ListedGroup<Arch>& group) {
     Vector x[4][2];
-    Gather<Arch>::from(source, candidate, x);
+    Gather<Arch>::from(source, group, x);
     scale(x);
   }
 
@@ -303,13 +339,13 @@ struct DirectDifferences {
   Double largest[3][2];
   Double overall;
 
-  template <class Source>
-  DirectDifferences(const Source& source, const typename Gather<Arch>::Candidates& candidate) {
+  template <class Source, class Group>
+  DirectDifferences(const Source& source, const Group& group) {
     {
       // The positions die here: 24 registers that, kept for the rare scaled
       // frame, spilled to the stack throughout (it loads them again).
       typename L::Vector x[4][2];  // DESIGN.md's x_{k+1} at t = tau
-      Gather<Arch>::from(source, candidate, x);
+      Gather<Arch>::from(source, group, x);
       for (int i = 0; i < 3; ++i)
         for (int tau = 0; tau < 2; ++tau) relative[i][tau] = x[i + 1][tau] - x[0][tau];
     }
@@ -335,10 +371,9 @@ struct DirectDifferences {
 // positions again.
 template <class Arch, class Source>
 [[gnu::noinline, gnu::flatten]] std::uint32_t sign_culled_in_scaled_frame(
-    const Source& source, const typename Gather<Arch>::Candidates& candidate,
-    const reference::FilterSettings& settings) {
+    const Source& source, const ListedGroup<Arch>& group, const reference::FilterSettings& settings) {
   using Double = typename Lanes<Arch>::Double;
-  const ScaledFrame<Arch> frame(source, candidate);
+  const ScaledFrame<Arch> frame(source, group);
   Double largest[3][2];
   for (int i = 0; i < 3; ++i)
     for (int tau = 0; tau < 2; ++tau)
@@ -352,11 +387,10 @@ template <class Arch, class Source>
 // The separation filter's, likewise.
 template <class Arch, class Source>
 [[gnu::noinline, gnu::flatten]] std::uint32_t separation_culled_in_scaled_frame(
-    const Source& source, const typename Gather<Arch>::Candidates& candidate,
-    const reference::FilterSettings& settings) {
+    const Source& source, const ListedGroup<Arch>& group, const reference::FilterSettings& settings) {
   using Double = typename Lanes<Arch>::Double;
   using Mask = typename Lanes<Arch>::Mask;
-  const ScaledFrame<Arch> frame(source, candidate);
+  const ScaledFrame<Arch> frame(source, group);
   // reference::separation_error, lane by lane.
   const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
   const Mask enabled = settings.certified ? Mask(frame.absolute_error <= Double(0x1p-900)) : Mask(true);
@@ -365,46 +399,65 @@ template <class Arch, class Source>
   return lane_bits<Arch>(culled & enabled & frame.evaluable);
 }
 
-// The sign filter over the candidates of `candidate`, `count` (<= lane
-// count) of them in use: bit k set when lane k is certainly (or,
-// uncertified, plainly) free of contact. Lanes past count are never culled.
-// Frames as in reference::run_filters: direct where the differences lie in
-// its window, scaled elsewhere (rare: only groups with such a lane pay).
-template <class Arch, class Source>
-[[gnu::flatten]] std::uint32_t sign_culled_lanes(const Source& source,
-                                                 const typename Gather<Arch>::Candidates& candidate,
-                                                 std::size_t count, const reference::FilterSettings& settings) {
+// The first pass, over every candidate of a group (`count` <= lane count of
+// them in use): bit k set when the sign filter certainly (or,
+// uncertified, plainly) culls lane k on the whole interval. Lanes past count
+// are never culled. Frames as in reference::run_filters: direct where the
+// differences lie in its window; elsewhere (rare: only groups with such a
+// lane pay) the scaled frame's whole filter, halves included.
+template <class Arch, class Source, class Group>
+[[gnu::flatten]] std::uint32_t whole_interval_culled_lanes(const Source& source, const Group& group,
+                                                           std::size_t count,
+                                                           const reference::FilterSettings& settings) {
   using Double = typename Lanes<Arch>::Double;
-  const DirectDifferences<Arch> differences(source, candidate);
+  const DirectDifferences<Arch> differences(source, group);
   const auto direct = differences.within(reference::kDirectLowest, reference::kDirectHighest);
   const std::uint32_t lanes_in_use = (1u << count) - 1;
-  std::uint32_t culled = lane_bits<Arch>(
-      direct & reference::sign_filter_culls(differences.relative, differences.largest,
-                                            Double(reference::direct_coefficient_error().floor),
-                                            settings.certified, settings.subdivide));
+  const auto test = reference::sign_test(differences.relative, differences.largest,
+                                         Double(reference::direct_coefficient_error().floor), settings.certified);
+  std::uint32_t culled = lane_bits<Arch>(direct & test.whole());
   const std::uint32_t scaled_lanes = ~lane_bits<Arch>(direct) & lanes_in_use;
-  if (scaled_lanes != 0) culled |= scaled_lanes & sign_culled_in_scaled_frame<Arch>(source, candidate, settings);
+  if (scaled_lanes != 0)
+    culled |= scaled_lanes & sign_culled_in_scaled_frame<Arch>(source, listed(group), settings);
   return culled & lanes_in_use;
 }
 
-// The separation filter, likewise (its window is narrower).
+// What the second pass culls, bit k for lane k.
+struct LaterCulls {
+  std::uint32_t sign = 0;        // by the sign filter's halves
+  std::uint32_t separation = 0;  // by the separation filter, of the lanes the halves keep
+};
+
+// The second pass, over the first one's survivors: the sign filter's halves
+// in its direct frame (lanes in the scaled frame had the whole filter in the
+// first pass), then the separation filter in its own frames.
 template <class Arch, class Source>
-[[gnu::flatten]] std::uint32_t separation_culled_lanes(const Source& source,
-                                                       const typename Gather<Arch>::Candidates& candidate,
-                                                       std::size_t count,
-                                                       const reference::FilterSettings& settings) {
+[[gnu::flatten]] LaterCulls later_culled_lanes(const Source& source, const ListedGroup<Arch>& group,
+                                               std::size_t count, const reference::FilterSettings& settings) {
   using Double = typename Lanes<Arch>::Double;
-  const DirectDifferences<Arch> differences(source, candidate);
-  const auto direct = differences.within(reference::kSeparationDirectLowest, reference::kSeparationDirectHighest);
-  const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
+  const DirectDifferences<Arch> differences(source, group);
   const std::uint32_t lanes_in_use = (1u << count) - 1;
-  std::uint32_t culled = lane_bits<Arch>(
-      direct & reference::separation_filter_culls(source.kind, differences.relative, Double(error.relative),
-                                                  Double(error.floor)));
-  const std::uint32_t scaled_lanes = ~lane_bits<Arch>(direct) & lanes_in_use;
-  if (scaled_lanes != 0)
-    culled |= scaled_lanes & separation_culled_in_scaled_frame<Arch>(source, candidate, settings);
-  return culled & lanes_in_use;
+  LaterCulls culled;
+  if (settings.sign && settings.subdivide) {
+    const auto direct = differences.within(reference::kDirectLowest, reference::kDirectHighest);
+    const auto test = reference::sign_test(differences.relative, differences.largest,
+                                           Double(reference::direct_coefficient_error().floor),
+                                           settings.certified);
+    culled.sign = lane_bits<Arch>(direct & test.halves()) & lanes_in_use;
+  }
+  if (settings.separation) {
+    const auto direct =
+        differences.within(reference::kSeparationDirectLowest, reference::kSeparationDirectHighest);
+    const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
+    const std::uint32_t kept = ~culled.sign & lanes_in_use;
+    culled.separation = kept & lane_bits<Arch>(direct & reference::separation_filter_culls(
+                                                              source.kind, differences.relative,
+                                                              Double(error.relative), Double(error.floor)));
+    const std::uint32_t scaled_lanes = ~lane_bits<Arch>(direct) & kept;
+    if (scaled_lanes != 0)
+      culled.separation |= scaled_lanes & separation_culled_in_scaled_frame<Arch>(source, group, settings);
+  }
+  return culled;
 }
 
 // Candidates [first, first + count) checked for ids the mesh does not have
@@ -451,41 +504,47 @@ void check_ids(const MeshVertexFace& mesh, std::size_t first, std::size_t count)
     throw IndexOutOfRange{};
 }
 
-// The filters over candidates [begin, end): see FilterFunction. The sign
-// filter runs over all of them and compacts its survivors; the separation
-// filter then runs over those alone, in full lanes, and compacts them again.
+// The filters over candidates [begin, end): see FilterFunction. The first
+// pass runs over all of them and compacts its survivors; the second runs
+// over those alone, in full lanes, and compacts them again.
 template <class Arch, class Source>
 std::size_t filter_range(const Source& source, std::size_t begin, std::size_t end,
                          const reference::FilterSettings& settings, std::uint32_t* survivors,
                          FilterCounts& counts) {
   constexpr std::size_t lanes = Lanes<Arch>::size;
-  typename Gather<Arch>::Candidates candidate;
   std::uint32_t offsets[8] = {};  // survivors' indices relative to begin, lane by lane
   std::size_t kept = 0;
   for (std::size_t first = begin; first < end; first += lanes) {
     const std::size_t count = std::min(end - first, lanes);
     check_ids<Arch>(source, first, count);  // every candidate passes here first, whatever the settings
+    ListedGroup<Arch> group;
     for (std::size_t j = 0; j < lanes; ++j) {
       const std::size_t i = first + std::min(j, count - 1);  // spare lanes repeat the last
-      candidate[j] = static_cast<std::int64_t>(i);
+      group.candidate[j] = static_cast<std::int64_t>(i);
       offsets[j] = static_cast<std::uint32_t>(i - begin);
     }
-    const std::uint32_t culled = settings.sign ? sign_culled_lanes<Arch>(source, candidate, count, settings) : 0;
+    std::uint32_t culled = 0;
+    if (settings.sign)
+      culled = count == lanes ? whole_interval_culled_lanes<Arch>(
+                                    source, ConsecutiveGroup<Arch>{static_cast<std::int64_t>(first)}, count, settings)
+                              : whole_interval_culled_lanes<Arch>(source, group, count, settings);
     counts.sign += static_cast<std::size_t>(__builtin_popcount(culled));
     kept += compress<Arch>(~culled & ((1u << count) - 1), offsets, survivors + kept);
   }
-  if (!settings.separation) return kept;
-  const std::size_t sign_survivors = kept;
+  if (!(settings.sign && settings.subdivide) && !settings.separation) return kept;
+  const std::size_t first_survivors = kept;
   kept = 0;
-  for (std::size_t first = 0; first < sign_survivors; first += lanes) {
-    const std::size_t count = std::min(sign_survivors - first, lanes);
+  for (std::size_t first = 0; first < first_survivors; first += lanes) {
+    const std::size_t count = std::min(first_survivors - first, lanes);
+    ListedGroup<Arch> group;
     for (std::size_t j = 0; j < lanes; ++j) {
       offsets[j] = survivors[first + std::min(j, count - 1)];
-      candidate[j] = static_cast<std::int64_t>(begin + offsets[j]);
+      group.candidate[j] = static_cast<std::int64_t>(begin + offsets[j]);
     }
-    const std::uint32_t culled = separation_culled_lanes<Arch>(source, candidate, count, settings);
-    counts.separation += static_cast<std::size_t>(__builtin_popcount(culled));
-    kept += compress<Arch>(~culled & ((1u << count) - 1), offsets, survivors + kept);
+    const LaterCulls culled = later_culled_lanes<Arch>(source, group, count, settings);
+    counts.sign += static_cast<std::size_t>(__builtin_popcount(culled.sign));
+    counts.separation += static_cast<std::size_t>(__builtin_popcount(culled.separation));
+    kept += compress<Arch>(~(culled.sign | culled.separation) & ((1u << count) - 1), offsets, survivors + kept);
   }
   return kept;
 }

@@ -106,12 +106,13 @@ TEST(SignFilter, KeepsCrossingsAndCoplanarMotion) {
 // V = 2 without a root: only the subdivision at 1/2 culls it.
 TEST(SignFilter, SubdivisionSettlesVEqualsTwo) {
   // 8 d(t) with d = (2t - 1)^2 + 1/8: scaled Bernstein coefficients (9, -5, -5, 9).
-  BernsteinCubic<double> cubic{{9, -5, -5, 9}, {9, 5, 5, 9}};
-  EXPECT_FALSE(certainly_root_free(cubic.coefficient, cubic.magnitude, 0.0, 0.0));
-  EXPECT_TRUE(sign_filter_culls(cubic, 0.0, 0.0, 0.0, 0.0));
+  const SignTest<double> test{{{9, -5, -5, 9}, {9, 5, 5, 9}}, 0.0, 0.0, 0.0, 0.0};
+  EXPECT_FALSE(test.whole());
+  EXPECT_TRUE(test.halves());
   // (2t - 1)^2 touches zero at 1/2: never culled.
-  BernsteinCubic<double> touching{{1, -1, -1, 1}, {1, 1, 1, 1}};
-  EXPECT_FALSE(sign_filter_culls(touching, 0.0, 0.0, 0.0, 0.0));
+  const SignTest<double> touching{{{1, -1, -1, 1}, {1, 1, 1, 1}}, 0.0, 0.0, 0.0, 0.0};
+  EXPECT_FALSE(touching.whole());
+  EXPECT_FALSE(touching.halves());
 }
 
 TEST(SignFilter, CertifiedCullsAreASubsetOfPlainCulls) {

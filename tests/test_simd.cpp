@@ -182,6 +182,29 @@ TEST(SimdKernels, MatchTheReferenceFilterOnMeshIndexLists) {
   }
 }
 
+// The second pass gets survivors with a gap, and a last partial group whose
+// spare lanes repeat its last candidate: [4, 5, 7, 7] on four lanes,
+// [0, ..., 5, 7, 7] on eight. Its ends lie as far apart as those of
+// consecutive candidates, which they are not (a past version took them for
+// consecutive, evaluated query 6 in query 7's lane and culled a collision).
+TEST(SimdKernels, SecondPassEvaluatesTheSurvivorsItIsGiven) {
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  const Query falls_through{{Vec3(0.25, 0.25, 1), a, b, c, Vec3(0.25, 0.25, -1), a, b, c}};
+  const Query stays_above{{Vec3(0.25, 0.25, 5), a, b, c, Vec3(0.25, 0.25, 4), a, b, c}};
+  std::vector<Query> queries(8, falls_through);
+  queries[6] = stays_above;
+  const simd::RawQueries source{Kind::vertex_face, queries.data()};
+  const std::vector<std::uint32_t> collisions = {0, 1, 2, 3, 4, 5, 7};
+  for (const reference::FilterSettings& settings : all_settings()) {
+    if (!settings.sign && !settings.separation) continue;
+    for (const simd::FilterKernels* k : vector_kernels()) {
+      std::vector<std::uint32_t> kept = survivors(k->raw, source, 0, queries.size(), settings);
+      kept.resize(kept.size() - 2);  // the counts
+      EXPECT_EQ(kept, collisions) << to_string(k->isa) << " " << describe(settings);
+    }
+  }
+}
+
 // Every instruction set gives the same final answers as the scalar path.
 TEST(SimdKernels, FinalDecisionsAreIdenticalOnSharedData) {
   const std::filesystem::path data = BATCHCCD_SHARED_DATA;

@@ -21,42 +21,60 @@ auto certainly_root_free(const T (&coefficient)[4], const T (&magnitude)[4], T r
   return positive | negative;
 }
 
-// V = 0 on [0, 1], or V = 0 on both halves after one subdivision (which is
-// what settles V = 2 without roots). Without `subdivide`, the four signs
-// alone: the DNF-style filter of Tang et al. 2010, kept for comparison.
+// The filter's two steps on a query's six differences relative[i][tau]
+// (DESIGN.md's x_{i+2}(tau) - x_1(tau), in whichever frame), given each
+// one's largest component magnitude, with the coefficients' absolute error
+// floor of that frame (their relative error is coefficient_error's in
+// both). The lane kernels take the steps apart: the whole interval for
+// every candidate, the halves only for the few it keeps (a branch on
+// whether a group of lanes needs them mispredicts too often).
 template <class T>
-auto sign_filter_culls(const BernsteinCubic<T>& cubic, T relative, T floor, T half_relative,
-                       T half_floor, bool subdivide = true) {
-  const auto whole = certainly_root_free(cubic.coefficient, cubic.magnitude, relative, floor);
-  // Where every lane is settled already the halves change nothing: most
-  // groups of lanes skip them.
-  if (!subdivide || all_of(whole)) return whole;
-  T left[4], right[4], left_magnitude[4], right_magnitude[4];
-  split_at_half(cubic.coefficient, left, right);
-  split_at_half(cubic.magnitude, left_magnitude, right_magnitude);
-  return whole | (certainly_root_free(left, left_magnitude, half_relative, half_floor) &
-                  certainly_root_free(right, right_magnitude, half_relative, half_floor));
+struct SignTest {
+  BernsteinCubic<T> cubic;
+  T relative, floor, half_relative, half_floor;
+
+  // V = 0 on [0, 1].
+  auto whole() const { return certainly_root_free(cubic.coefficient, cubic.magnitude, relative, floor); }
+
+  // V = 0 on both halves after one subdivision: what settles V = 2 without roots.
+  auto halves() const {
+    T left[4], right[4], left_magnitude[4], right_magnitude[4];
+    split_at_half(cubic.coefficient, left, right);
+    split_at_half(cubic.magnitude, left_magnitude, right_magnitude);
+    return certainly_root_free(left, left_magnitude, half_relative, half_floor) &
+           certainly_root_free(right, right_magnitude, half_relative, half_floor);
+  }
+};
+
+// The test of a query's differences (uncertified: plain signs).
+template <class T>
+SignTest<T> sign_test(const Vector3<T> (&r)[3][2], const T (&largest)[3][2], T coefficient_floor,
+                      bool certified) {
+  SignTest<T> test{bernstein_cubic(r[0][0], r[0][1], r[1][0], r[1][1], r[2][0], r[2][1]), T(0), T(0), T(0),
+                   T(0)};
+  if (!certified) {
+    for (T& m : test.cubic.magnitude) m = T(0);
+    return test;
+  }
+  const auto& n = largest;
+  bernstein_magnitude_bounds(test.cubic, n[0][0], n[0][1], n[1][0], n[1][1], n[2][0], n[2][1]);
+  const ErrorModel whole = coefficient_error(0.0), half = half_coefficient_error(whole);
+  test.relative = T(whole.relative), test.floor = coefficient_floor;
+  test.half_relative = T(half.relative), test.half_floor = T(kHalfWeightSum) * coefficient_floor;
+  return test;
 }
 
-// The filter on a query's six differences relative[i][tau] (DESIGN.md's
-// x_{i+2}(tau) - x_1(tau), in whichever frame), given each one's largest
-// component magnitude, with the coefficients' absolute error floor of that
-// frame (their relative error is coefficient_error's in both). Uncertified:
-// plain signs.
+// The whole filter: the whole interval, then (with `subdivide`) the halves.
+// Without `subdivide`, the four signs alone: the DNF-style filter of Tang et
+// al. 2010, kept for comparison.
 template <class T>
 auto sign_filter_culls(const Vector3<T> (&relative)[3][2], const T (&largest)[3][2], T floor,
                        bool certified, bool subdivide) {
-  const auto& r = relative;
-  BernsteinCubic<T> cubic = bernstein_cubic(r[0][0], r[0][1], r[1][0], r[1][1], r[2][0], r[2][1]);
-  if (!certified) {
-    for (T& m : cubic.magnitude) m = T(0);
-    return sign_filter_culls(cubic, T(0), T(0), T(0), T(0), subdivide);
-  }
-  const auto& n = largest;
-  bernstein_magnitude_bounds(cubic, n[0][0], n[0][1], n[1][0], n[1][1], n[2][0], n[2][1]);
-  const ErrorModel whole = coefficient_error(0.0), half = half_coefficient_error(whole);
-  return sign_filter_culls(cubic, T(whole.relative), floor, T(half.relative), T(kHalfWeightSum) * floor,
-                           subdivide);
+  const SignTest<T> test = sign_test(relative, largest, floor, certified);
+  const auto whole = test.whole();
+  // Where every lane is settled already the halves change nothing.
+  if (!subdivide || all_of(whole)) return whole;
+  return whole | test.halves();
 }
 
 }  // namespace batchccd::reference
