@@ -155,12 +155,29 @@ struct Gather {
       }
   }
 
-  template <class MeshSource, class Group>
-  static void from(const MeshSource& mesh, const Group& group, Vector (&x)[4][2]) {
+  template <class MeshSource>
+  static void from(const MeshSource& mesh, const ListedGroup<Arch>& group, Vector (&x)[4][2]) {
+    from_pairs(mesh, [&](std::size_t j) { return static_cast<std::size_t>(group[j]); }, x);
+  }
+  template <class MeshSource>
+  static void from(const MeshSource& mesh, const ConsecutiveGroup<Arch>& group, Vector (&x)[4][2]) {
+    // Lane j's candidate is pair j of the list from `first` on: its ids lie
+    // at a fixed offset from one pointer.
+    MeshSource from_first = mesh;
+    from_first.pairs += group.first;
+    // Opaque to the optimiser, which otherwise folds the offset back into
+    // each lane's index and computes eight addresses (24 instructions).
+    asm("" : "+r"(from_first.pairs));
+    from_pairs(from_first, [](std::size_t j) { return j; }, x);
+  }
+
+  // Lane j evaluates candidate pair(j) of the mesh.
+  template <class MeshSource, class Pair>
+  static void from_pairs(const MeshSource& mesh, const Pair& pair, Vector (&x)[4][2]) {
     alignas(64) std::int64_t ids[4][L::size];
     for (std::size_t j = 0; j < L::size; ++j) {
       // Unchecked: filter_range checked them (check_ids) before this group.
-      const auto vertices = vertex_ids<false>(mesh, static_cast<std::size_t>(group[j]));
+      const auto vertices = vertex_ids<false>(mesh, pair(j));
       for (int k = 0; k < 4; ++k) ids[k][j] = vertices[k];
     }
     const double* packed = mesh.positions.rows;
@@ -248,6 +265,21 @@ std::size_t compress(std::uint32_t keep, const std::uint32_t* values, std::uint3
     std::copy(values, values + 8, loaded);
     std::size_t n = 0;
     for (; keep != 0; keep &= keep - 1) out[n++] = loaded[__builtin_ctz(keep)];
+    return n;
+  }
+}
+
+// The same for values first, first + 1, ..., first + 7.
+template <class Arch>
+std::size_t compress(std::uint32_t keep, std::uint32_t first, std::uint32_t* out) {
+  if constexpr (std::is_base_of_v<xsimd::avx512f, Arch>) {
+    const __m256i values = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(first)),
+                                            _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+    _mm256_mask_compressstoreu_epi32(out, static_cast<__mmask8>(keep), values);
+    return static_cast<std::size_t>(__builtin_popcount(keep));
+  } else {
+    std::size_t n = 0;
+    for (; keep != 0; keep &= keep - 1) out[n++] = first + static_cast<std::uint32_t>(__builtin_ctz(keep));
     return n;
   }
 }
@@ -384,6 +416,15 @@ template <class Arch, class Source>
   return lane_bits<Arch>(culled & frame.evaluable);
 }
 
+// A consecutive group's list made in here, out of the common path (made
+// there, its values stayed live across the whole kernel, on the stack).
+template <class Arch, class Source>
+[[gnu::noinline]] std::uint32_t sign_culled_in_scaled_frame(const Source& source,
+                                                            const ConsecutiveGroup<Arch>& group,
+                                                            const reference::FilterSettings& settings) {
+  return sign_culled_in_scaled_frame<Arch>(source, listed(group), settings);
+}
+
 // The separation filter's, likewise.
 template <class Arch, class Source>
 [[gnu::noinline, gnu::flatten]] std::uint32_t separation_culled_in_scaled_frame(
@@ -414,11 +455,12 @@ template <class Arch, class Source, class Group>
   const auto direct = differences.within(reference::kDirectLowest, reference::kDirectHighest);
   const std::uint32_t lanes_in_use = (1u << count) - 1;
   const auto test = reference::sign_test(differences.relative, differences.largest,
-                                         Double(reference::direct_coefficient_error().floor), settings.certified);
+                                         Double(reference::direct_coefficient_error().floor),
+                                         settings.certified);
   std::uint32_t culled = lane_bits<Arch>(direct & test.whole());
   const std::uint32_t scaled_lanes = ~lane_bits<Arch>(direct) & lanes_in_use;
   if (scaled_lanes != 0)
-    culled |= scaled_lanes & sign_culled_in_scaled_frame<Arch>(source, listed(group), settings);
+    culled |= scaled_lanes & sign_culled_in_scaled_frame<Arch>(source, group, settings);
   return culled & lanes_in_use;
 }
 
@@ -512,28 +554,28 @@ std::size_t filter_range(const Source& source, std::size_t begin, std::size_t en
                          const reference::FilterSettings& settings, std::uint32_t* survivors,
                          FilterCounts& counts) {
   constexpr std::size_t lanes = Lanes<Arch>::size;
-  std::uint32_t offsets[8] = {};  // survivors' indices relative to begin, lane by lane
   std::size_t kept = 0;
   for (std::size_t first = begin; first < end; first += lanes) {
     const std::size_t count = std::min(end - first, lanes);
     check_ids<Arch>(source, first, count);  // every candidate passes here first, whatever the settings
-    ListedGroup<Arch> group;
-    for (std::size_t j = 0; j < lanes; ++j) {
-      const std::size_t i = first + std::min(j, count - 1);  // spare lanes repeat the last
-      group.candidate[j] = static_cast<std::int64_t>(i);
-      offsets[j] = static_cast<std::uint32_t>(i - begin);
-    }
     std::uint32_t culled = 0;
-    if (settings.sign)
-      culled = count == lanes ? whole_interval_culled_lanes<Arch>(
-                                    source, ConsecutiveGroup<Arch>{static_cast<std::int64_t>(first)}, count, settings)
-                              : whole_interval_culled_lanes<Arch>(source, group, count, settings);
+    if (settings.sign && count == lanes) {
+      const ConsecutiveGroup<Arch> group{static_cast<std::int64_t>(first)};
+      culled = whole_interval_culled_lanes<Arch>(source, group, count, settings);
+    } else if (settings.sign) {
+      ListedGroup<Arch> group;  // the last few; spare lanes repeat the last
+      for (std::size_t j = 0; j < lanes; ++j)
+        group.candidate[j] = static_cast<std::int64_t>(first + std::min(j, count - 1));
+      culled = whole_interval_culled_lanes<Arch>(source, group, count, settings);
+    }
     counts.sign += static_cast<std::size_t>(__builtin_popcount(culled));
-    kept += compress<Arch>(~culled & ((1u << count) - 1), offsets, survivors + kept);
+    const auto offset = static_cast<std::uint32_t>(first - begin);
+    kept += compress<Arch>(~culled & ((1u << count) - 1), offset, survivors + kept);
   }
   if (!(settings.sign && settings.subdivide) && !settings.separation) return kept;
   const std::size_t first_survivors = kept;
   kept = 0;
+  std::uint32_t offsets[8] = {};  // survivors' indices relative to begin, lane by lane
   for (std::size_t first = 0; first < first_survivors; first += lanes) {
     const std::size_t count = std::min(first_survivors - first, lanes);
     ListedGroup<Arch> group;
@@ -544,7 +586,8 @@ std::size_t filter_range(const Source& source, std::size_t begin, std::size_t en
     const LaterCulls culled = later_culled_lanes<Arch>(source, group, count, settings);
     counts.sign += static_cast<std::size_t>(__builtin_popcount(culled.sign));
     counts.separation += static_cast<std::size_t>(__builtin_popcount(culled.separation));
-    kept += compress<Arch>(~(culled.sign | culled.separation) & ((1u << count) - 1), offsets, survivors + kept);
+    const std::uint32_t keep = ~(culled.sign | culled.separation) & ((1u << count) - 1);
+    kept += compress<Arch>(keep, offsets, survivors + kept);
   }
   return kept;
 }
