@@ -155,12 +155,62 @@ struct Gather {
       }
   }
 
-  template <class MeshSource>
-  static void from(const MeshSource& mesh, const ListedGroup<Arch>& group, Vector (&x)[4][2]) {
-    from_pairs(mesh, [&](std::size_t j) { return static_cast<std::size_t>(group[j]); }, x);
+  template <class MeshSource, class Group>
+  static void from(const MeshSource& mesh, const Group& group, Vector (&x)[4][2]) {
+    with_pairs(mesh, group, [&](const MeshSource& from, const auto& pair) {
+      const double* packed = from.positions.rows;
+      for (int k = 0; k < 4; ++k) {
+        Double coordinate[kRowDoubles];
+        for (std::size_t part = 0; part < 6; part += L::size) {  // the row's six coordinates
+          Double row[L::size];
+          for (std::size_t j = 0; j < L::size; ++j)
+            row[j] = Double::load_unaligned(packed + kRowDoubles * vertex_ids<false>(from, pair(j))[k] + part);
+          transpose(row, coordinate + part);
+        }
+        x[k][0] = {coordinate[0], coordinate[1], coordinate[2]};
+        x[k][1] = {coordinate[3], coordinate[4], coordinate[5]};
+      }
+    });
   }
-  template <class MeshSource>
-  static void from(const MeshSource& mesh, const ConsecutiveGroup<Arch>& group, Vector (&x)[4][2]) {
+
+  // The differences x_{i+2}(tau) - x_1(tau) alone, taken row by row before
+  // the transposes: three rows a lane to transpose instead of four. The
+  // same operations on the same operands, so the same values.
+  template <class MeshSource, class Group>
+  static void differences(const MeshSource& mesh, const Group& group, Vector (&relative)[3][2]) {
+    with_pairs(mesh, group, [&](const MeshSource& from, const auto& pair) {
+      const double* packed = from.positions.rows;
+      for (int i = 0; i < 3; ++i) {
+        Double coordinate[kRowDoubles];
+        for (std::size_t part = 0; part < 6; part += L::size) {
+          Double row[L::size];
+          for (std::size_t j = 0; j < L::size; ++j) {
+            const auto ids = vertex_ids<false>(from, pair(j));
+            row[j] = Double::load_unaligned(packed + kRowDoubles * ids[i + 1] + part) -
+                     Double::load_unaligned(packed + kRowDoubles * ids[0] + part);
+          }
+          transpose(row, coordinate + part);
+        }
+        relative[i][0] = {coordinate[0], coordinate[1], coordinate[2]};
+        relative[i][1] = {coordinate[3], coordinate[4], coordinate[5]};
+      }
+    });
+  }
+  static void differences(const RawQueries& raw, const auto& group, Vector (&relative)[3][2]) {
+    Vector x[4][2];
+    from(raw, group, x);
+    for (int i = 0; i < 3; ++i)
+      for (int tau = 0; tau < 2; ++tau) relative[i][tau] = x[i + 1][tau] - x[0][tau];
+  }
+
+  // f(mesh, pair) with lane j's candidate at mesh.pairs[pair(j)]: unchecked
+  // (filter_range checked the ids, check_ids, before the group).
+  template <class MeshSource, class F>
+  static void with_pairs(const MeshSource& mesh, const ListedGroup<Arch>& group, const F& f) {
+    f(mesh, [&](std::size_t j) { return static_cast<std::size_t>(group[j]); });
+  }
+  template <class MeshSource, class F>
+  static void with_pairs(const MeshSource& mesh, const ConsecutiveGroup<Arch>& group, const F& f) {
     // Lane j's candidate is pair j of the list from `first` on: its ids lie
     // at a fixed offset from one pointer.
     MeshSource from_first = mesh;
@@ -168,39 +218,21 @@ struct Gather {
     // Opaque to the optimiser, which otherwise folds the offset back into
     // each lane's index and computes eight addresses (24 instructions).
     asm("" : "+r"(from_first.pairs));
-    from_pairs(from_first, [](std::size_t j) { return j; }, x);
-  }
-
-  // Lane j evaluates candidate pair(j) of the mesh.
-  template <class MeshSource, class Pair>
-  static void from_pairs(const MeshSource& mesh, const Pair& pair, Vector (&x)[4][2]) {
-    alignas(64) std::int64_t ids[4][L::size];
-    for (std::size_t j = 0; j < L::size; ++j) {
-      // Unchecked: filter_range checked them (check_ids) before this group.
-      const auto vertices = vertex_ids<false>(mesh, pair(j));
-      for (int k = 0; k < 4; ++k) ids[k][j] = vertices[k];
-    }
-    const double* packed = mesh.positions.rows;
-    for (int k = 0; k < 4; ++k) {
-      Double coordinate[kRowDoubles];
-      for (std::size_t part = 0; part < 6; part += L::size) {  // the row's six coordinates
-        Rows rows;
-        for (std::size_t j = 0; j < L::size; ++j) rows[j] = packed + kRowDoubles * ids[k][j] + part;
-        transpose(rows, coordinate + part);
-      }
-      x[k][0] = {coordinate[0], coordinate[1], coordinate[2]};
-      x[k][1] = {coordinate[3], coordinate[4], coordinate[5]};
-    }
+    f(from_first, [](std::size_t j) { return j; });
   }
 
   // out[c] lane j = rows[j][c] for c below the lane count (8, 4 or 2).
   static void transpose(const Rows& rows, Double* out) {
+    Double row[L::size];
+    for (std::size_t j = 0; j < L::size; ++j) row[j] = Double::load_unaligned(rows[j]);
+    transpose(row, out);
+  }
+  static void transpose(const Double (&row)[L::size], Double* out) {
     if constexpr (std::is_base_of_v<xsimd::avx512f, Arch>) {
-      __m512d r[8], t[8], u[8];
-      for (int i = 0; i < 8; ++i) r[i] = _mm512_loadu_pd(rows[i]);
+      __m512d t[8], u[8];
       for (int i = 0; i < 8; i += 2) {
-        t[i] = _mm512_unpacklo_pd(r[i], r[i + 1]);      // columns 0, 2, 4, 6 of rows i, i+1
-        t[i + 1] = _mm512_unpackhi_pd(r[i], r[i + 1]);  // columns 1, 3, 5, 7
+        t[i] = _mm512_unpacklo_pd(row[i], row[i + 1]);      // columns 0, 2, 4, 6 of rows i, i+1
+        t[i + 1] = _mm512_unpackhi_pd(row[i], row[i + 1]);  // columns 1, 3, 5, 7
       }
       for (int i = 0; i < 8; i += 4)
         for (int odd = 0; odd < 2; ++odd) {
@@ -212,18 +244,15 @@ struct Gather {
         out[c + 4] = _mm512_shuffle_f64x2(u[c], u[c + 4], 0xdd);
       }
     } else if constexpr (std::is_base_of_v<xsimd::avx2, Arch>) {
-      __m256d r[4];
-      for (int i = 0; i < 4; ++i) r[i] = _mm256_loadu_pd(rows[i]);
-      const __m256d t0 = _mm256_unpacklo_pd(r[0], r[1]), t1 = _mm256_unpackhi_pd(r[0], r[1]);
-      const __m256d t2 = _mm256_unpacklo_pd(r[2], r[3]), t3 = _mm256_unpackhi_pd(r[2], r[3]);
+      const __m256d t0 = _mm256_unpacklo_pd(row[0], row[1]), t1 = _mm256_unpackhi_pd(row[0], row[1]);
+      const __m256d t2 = _mm256_unpacklo_pd(row[2], row[3]), t3 = _mm256_unpackhi_pd(row[2], row[3]);
       out[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
       out[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
       out[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
       out[3] = _mm256_permute2f128_pd(t1, t3, 0x31);
     } else {
-      const __m128d r0 = _mm_loadu_pd(rows[0]), r1 = _mm_loadu_pd(rows[1]);
-      out[0] = _mm_unpacklo_pd(r0, r1);
-      out[1] = _mm_unpackhi_pd(r0, r1);
+      out[0] = _mm_unpacklo_pd(row[0], row[1]);
+      out[1] = _mm_unpackhi_pd(row[0], row[1]);
     }
   }
 };
@@ -373,14 +402,9 @@ struct DirectDifferences {
 
   template <class Source, class Group>
   DirectDifferences(const Source& source, const Group& group) {
-    {
-      // The positions die here: 24 registers that, kept for the rare scaled
-      // frame, spilled to the stack throughout (it loads them again).
-      typename L::Vector x[4][2];  // DESIGN.md's x_{k+1} at t = tau
-      Gather<Arch>::from(source, group, x);
-      for (int i = 0; i < 3; ++i)
-        for (int tau = 0; tau < 2; ++tau) relative[i][tau] = x[i + 1][tau] - x[0][tau];
-    }
+    // Only the differences: the positions, kept for the rare scaled frame,
+    // spilled to the stack throughout (it loads them again).
+    Gather<Arch>::differences(source, group, relative);
     Index largest_bits[6];
     for (int i = 0; i < 3; ++i)
       for (int tau = 0; tau < 2; ++tau) {
