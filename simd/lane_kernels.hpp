@@ -159,17 +159,10 @@ struct Gather {
   static void from(const MeshSource& mesh, const Group& group, Vector (&x)[4][2]) {
     with_pairs(mesh, group, [&](const MeshSource& from, const auto& pair) {
       const double* packed = from.positions.rows;
-      for (int k = 0; k < 4; ++k) {
-        Double coordinate[kRowDoubles];
-        for (std::size_t part = 0; part < 6; part += L::size) {  // the row's six coordinates
-          Double row[L::size];
-          for (std::size_t j = 0; j < L::size; ++j)
-            row[j] = Double::load_unaligned(packed + kRowDoubles * vertex_ids<false>(from, pair(j))[k] + part);
-          transpose(row, coordinate + part);
-        }
-        x[k][0] = {coordinate[0], coordinate[1], coordinate[2]};
-        x[k][1] = {coordinate[3], coordinate[4], coordinate[5]};
-      }
+      for (int k = 0; k < 4; ++k)
+        transposed([&](std::size_t j, std::size_t part) {
+          return Double::load_unaligned(packed + kRowDoubles * vertex_ids<false>(from, pair(j))[k] + part);
+        }, x[k]);
     });
   }
 
@@ -180,22 +173,29 @@ struct Gather {
   static void differences(const MeshSource& mesh, const Group& group, Vector (&relative)[3][2]) {
     with_pairs(mesh, group, [&](const MeshSource& from, const auto& pair) {
       const double* packed = from.positions.rows;
-      for (int i = 0; i < 3; ++i) {
-        Double coordinate[kRowDoubles];
-        for (std::size_t part = 0; part < 6; part += L::size) {
-          Double row[L::size];
-          for (std::size_t j = 0; j < L::size; ++j) {
-            const auto ids = vertex_ids<false>(from, pair(j));
-            row[j] = Double::load_unaligned(packed + kRowDoubles * ids[i + 1] + part) -
-                     Double::load_unaligned(packed + kRowDoubles * ids[0] + part);
-          }
-          transpose(row, coordinate + part);
-        }
-        relative[i][0] = {coordinate[0], coordinate[1], coordinate[2]};
-        relative[i][1] = {coordinate[3], coordinate[4], coordinate[5]};
-      }
+      for (int i = 0; i < 3; ++i)
+        transposed([&](std::size_t j, std::size_t part) {
+          const auto ids = vertex_ids<false>(from, pair(j));
+          return Double::load_unaligned(packed + kRowDoubles * ids[i + 1] + part) -
+                 Double::load_unaligned(packed + kRowDoubles * ids[0] + part);
+        }, relative[i]);
     });
   }
+
+  // Lane j's row of kRowDoubles (x, y, z at t0, then at t1), L::size
+  // doubles at a time from row(j, part), transposed into v[0] and v[1].
+  template <class Row>
+  static void transposed(const Row& row, Vector (&v)[2]) {
+    Double coordinate[kRowDoubles];
+    for (std::size_t part = 0; part < 6; part += L::size) {  // the row's six coordinates
+      Double rows[L::size];
+      for (std::size_t j = 0; j < L::size; ++j) rows[j] = row(j, part);
+      transpose(rows, coordinate + part);
+    }
+    v[0] = {coordinate[0], coordinate[1], coordinate[2]};
+    v[1] = {coordinate[3], coordinate[4], coordinate[5]};
+  }
+
   static void differences(const RawQueries& raw, const auto& group, Vector (&relative)[3][2]) {
     Vector x[4][2];
     from(raw, group, x);
