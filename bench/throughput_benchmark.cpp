@@ -97,7 +97,7 @@ void filter_raw(benchmark::State& state, Isa isa, const std::vector<Query>& quer
   const simd::FilterKernels* kernels = kernels_for(state, isa);
   if (!kernels) return;
   std::vector<std::uint32_t> survivors(queries.size());
-  const simd::RawQueries source{Kind::vertex_face, queries.data()};
+  const simd::RawQueries source = simd::raw_queries(Kind::vertex_face, queries.data(), queries.size());
   std::size_t kept = 0;
   for (auto _ : state) {
     simd::FilterCounts counts;

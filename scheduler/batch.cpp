@@ -176,7 +176,7 @@ void reset(BatchResult& out, std::size_t count, const Options& options) {
 void batch_ccd(Kind kind, std::span<const Query> queries, const Options& options, BatchResult& out) {
   const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
   const bool filtered = options.mode != Mode::cubic;  // the baseline runs unfiltered
-  const simd::RawQueries source{kind, queries.data()};
+  const simd::RawQueries source = simd::raw_queries(kind, queries.data(), queries.size());
   in_arena(options, [&] {
     Partials partials;
     std::vector<std::size_t> survivors;

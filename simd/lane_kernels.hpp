@@ -122,10 +122,12 @@ struct Gather {
     // cache lines arrive while these compute (the hardware's prefetcher
     // alone left half the read bandwidth unused). An address, never
     // dereferenced: past the end of the queries it is harmless.
-    const std::uintptr_t ahead =
-        reinterpret_cast<std::uintptr_t>(data) + kPrefetchQueries * kQueryDoubles * sizeof(double);
-    for (std::size_t line = 0; line < L::size * kQueryDoubles * sizeof(double); line += 64)
-      _mm_prefetch(reinterpret_cast<const char*>(ahead + line), _MM_HINT_T0);
+    if (raw.stream) {
+      const std::uintptr_t ahead =
+          reinterpret_cast<std::uintptr_t>(data) + kPrefetchQueries * kQueryDoubles * sizeof(double);
+      for (std::size_t line = 0; line < L::size * kQueryDoubles * sizeof(double); line += 64)
+        _mm_prefetch(reinterpret_cast<const char*>(ahead + line), _MM_HINT_T0);
+    }
     Double coordinate[kQueryDoubles];
     for (std::size_t block = 0; block < kQueryDoubles; block += L::size) {
       Rows rows;

@@ -132,7 +132,8 @@ TEST(SimdKernels, MatchTheReferenceFilterOnAdversarialQueries) {
   std::vector<Query> queries(1 << 19);
   for (Query& q : queries) q = generator.next();
   for (Kind kind : {Kind::vertex_face, Kind::edge_edge}) {
-    const simd::RawQueries source{kind, queries.data()};
+    const simd::RawQueries source = simd::raw_queries(kind, queries.data(), queries.size());
+    ASSERT_TRUE(source.stream);  // 96 MB: the lanes prefetch
     for (const reference::FilterSettings& settings : all_settings()) {
       // Odd range ends exercise the partial last lane group.
       const std::size_t begin = 3, end = queries.size() - 5;
