@@ -117,24 +117,36 @@ struct Gather {
 
   // Consecutive raw queries lie in one block of rows: loads and transposes.
   static void from(const RawQueries& raw, const ConsecutiveGroup<Arch>& group, Vector (&x)[4][2]) {
+    Double coordinate[kQueryDoubles];
+    transposed(first_row(raw, group), 0, coordinate);
+    points(raw.kind, coordinate, x);
+  }
+
+  // The group's first row. Streamed queries: ask for those kPrefetchQueries
+  // ahead now, so their cache lines arrive while these compute (the
+  // hardware's prefetcher alone left half the read bandwidth unused). An
+  // address, never dereferenced: past the end of the queries it is harmless.
+  static const double* first_row(const RawQueries& raw, const ConsecutiveGroup<Arch>& group) {
     const double* data = raw.queries[0].points[0].data() + group.first * kQueryDoubles;
-    // Streamed queries: ask for those kPrefetchQueries ahead now, so their
-    // cache lines arrive while these compute (the hardware's prefetcher
-    // alone left half the read bandwidth unused). An address, never
-    // dereferenced: past the end of the queries it is harmless.
     if (raw.stream) {
       const std::uintptr_t ahead =
           reinterpret_cast<std::uintptr_t>(data) + kPrefetchQueries * kQueryDoubles * sizeof(double);
       for (std::size_t line = 0; line < L::size * kQueryDoubles * sizeof(double); line += 64)
         _mm_prefetch(reinterpret_cast<const char*>(ahead + line), _MM_HINT_T0);
     }
-    Double coordinate[kQueryDoubles];
-    for (std::size_t block = 0; block < kQueryDoubles; block += L::size) {
+    return data;
+  }
+
+  // Doubles [begin, begin + n) of the rows from `data` on (one query a
+  // row), transposed: lane j of coordinate[c] is double begin + c of row j.
+  template <std::size_t n>
+  static void transposed(const double* data, std::size_t begin, Double (&coordinate)[n]) {
+    static_assert(n % L::size == 0);
+    for (std::size_t block = 0; block < n; block += L::size) {
       Rows rows;
-      for (std::size_t j = 0; j < L::size; ++j) rows[j] = data + j * kQueryDoubles + block;
+      for (std::size_t j = 0; j < L::size; ++j) rows[j] = data + j * kQueryDoubles + begin + block;
       transpose(rows, coordinate + block);
     }
-    points(raw.kind, coordinate, x);
   }
 
   // Any others: gathers.
@@ -199,10 +211,27 @@ struct Gather {
   }
 
   static void differences(const RawQueries& raw, const auto& group, Vector (&relative)[3][2]) {
-    Vector x[4][2];
-    from(raw, group, x);
-    for (int i = 0; i < 3; ++i)
-      for (int tau = 0; tau < 2; ++tau) relative[i][tau] = x[i + 1][tau] - x[0][tau];
+    constexpr std::size_t kTimeDoubles = kQueryDoubles / 2;  // a query's four points at one time
+    if constexpr (std::is_same_v<std::decay_t<decltype(group)>, ConsecutiveGroup<Arch>> &&
+                  kTimeDoubles % L::size == 0) {
+      // One time after the other: 12 coordinates live instead of 24, which
+      // AVX2's 16 registers could not hold.
+      const double* data = first_row(raw, group);
+      for (int tau = 0; tau < 2; ++tau) {
+        Double coordinate[kTimeDoubles];
+        transposed(data, kTimeDoubles * tau, coordinate);
+        const auto point = [&](int k) {
+          const Double* c = coordinate + 3 * reference::point_index(raw.kind, k);
+          return Vector{c[0], c[1], c[2]};
+        };
+        for (int i = 0; i < 3; ++i) relative[i][tau] = point(i + 2) - point(1);
+      }
+    } else {
+      Vector x[4][2];
+      from(raw, group, x);
+      for (int i = 0; i < 3; ++i)
+        for (int tau = 0; tau < 2; ++tau) relative[i][tau] = x[i + 1][tau] - x[0][tau];
+    }
   }
 
   // f(mesh, pair) with lane j's candidate at mesh.pairs[pair(j)]: unchecked
