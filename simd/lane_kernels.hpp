@@ -116,7 +116,8 @@ struct Gather {
   static constexpr int kQueryDoubles = 24;
 
   // Consecutive raw queries lie in one block of rows: loads and transposes.
-  static void from(const RawQueries& raw, const ConsecutiveGroup<Arch>& group, Vector (&x)[4][2]) {
+  template <Kind K>
+  static void from(const RawQueriesOf<K>& raw, const ConsecutiveGroup<Arch>& group, Vector (&x)[4][2]) {
     Double coordinate[kQueryDoubles];
     transposed(first_row(raw, group), 0, coordinate);
     points(raw.kind, coordinate, x);
@@ -126,7 +127,8 @@ struct Gather {
   // ahead now, so their cache lines arrive while these compute (the
   // hardware's prefetcher alone left half the read bandwidth unused). An
   // address, never dereferenced: past the end of the queries it is harmless.
-  static const double* first_row(const RawQueries& raw, const ConsecutiveGroup<Arch>& group) {
+  template <Kind K>
+  static const double* first_row(const RawQueriesOf<K>& raw, const ConsecutiveGroup<Arch>& group) {
     const double* data = raw.queries[0].points[0].data() + group.first * kQueryDoubles;
     if (raw.stream) {
       const std::uintptr_t ahead =
@@ -150,7 +152,8 @@ struct Gather {
   }
 
   // Any others: gathers.
-  static void from(const RawQueries& raw, const ListedGroup<Arch>& group, Vector (&x)[4][2]) {
+  template <Kind K>
+  static void from(const RawQueriesOf<K>& raw, const ListedGroup<Arch>& group, Vector (&x)[4][2]) {
     const double* data = raw.queries[0].points[0].data();
     alignas(64) std::int64_t offset[L::size];
     for (std::size_t j = 0; j < L::size; ++j) offset[j] = group[j] * kQueryDoubles;
@@ -210,7 +213,8 @@ struct Gather {
     v[1] = {coordinate[3], coordinate[4], coordinate[5]};
   }
 
-  static void differences(const RawQueries& raw, const auto& group, Vector (&relative)[3][2]) {
+  template <Kind K>
+  static void differences(const RawQueriesOf<K>& raw, const auto& group, Vector (&relative)[3][2]) {
     constexpr std::size_t kTimeDoubles = kQueryDoubles / 2;  // a query's four points at one time
     if constexpr (std::is_same_v<std::decay_t<decltype(group)>, ConsecutiveGroup<Arch>> &&
                   kTimeDoubles % L::size == 0) {
@@ -562,8 +566,8 @@ template <class Arch, class Source>
 // from the candidate list (ids as unsigned: negative ones are huge), a
 // scalar test per id costing the kernel a fifth of its speed; a batch's
 // last, partial group id by id.
-template <class Arch>
-void check_ids(const RawQueries&, std::size_t, std::size_t) {}  // nothing to index
+template <class Arch, Kind K>
+void check_ids(const RawQueriesOf<K>&, std::size_t, std::size_t) {}  // nothing to index
 
 // Ids are ints: below count when, as unsigned, below count capped at 2^31.
 // Always inlined, like every non-template here: the kernel files are
@@ -647,9 +651,21 @@ std::size_t filter_range(const Source& source, std::size_t begin, std::size_t en
   return kept;
 }
 
+// Raw queries: the kind picked once a call, so that each kernel knows it.
+template <class Arch>
+std::size_t filter_range_raw(const RawQueries& raw, std::size_t begin, std::size_t end,
+                             const reference::FilterSettings& settings, std::uint32_t* survivors,
+                             FilterCounts& counts) {
+  if (raw.kind == Kind::vertex_face)
+    return filter_range<Arch>(RawQueriesOf<Kind::vertex_face>{raw.queries, raw.stream}, begin, end, settings,
+                              survivors, counts);
+  return filter_range<Arch>(RawQueriesOf<Kind::edge_edge>{raw.queries, raw.stream}, begin, end, settings,
+                            survivors, counts);
+}
+
 template <class Arch>
 FilterKernels make_kernels(Isa isa) {
-  return {isa, &filter_range<Arch, RawQueries>, &filter_range<Arch, MeshVertexFace>,
+  return {isa, &filter_range_raw<Arch>, &filter_range<Arch, MeshVertexFace>,
           &filter_range<Arch, MeshEdgeEdge>};
 }
 

@@ -23,6 +23,15 @@ struct RawQueries {
   bool stream = false;  // too many to stay in cache: the lanes prefetch ahead
 };
 
+// Raw queries of one kind, fixed at compile time as a mesh source's is: the
+// lane kernels take them so (a query's point order depends on its kind).
+template <Kind K>
+struct RawQueriesOf {
+  static constexpr Kind kind = K;
+  const Query* queries;
+  bool stream;
+};
+
 // A view of `count` raw queries. Those that fit in a core's second-level
 // cache (1 MiB on the processors we target, 5,461 queries) come from there
 // fast enough for the lanes on their own; prefetching them costs the
