@@ -174,12 +174,9 @@ struct Gather {
 
   template <class MeshSource, class Group>
   static void from(const MeshSource& mesh, const Group& group, Vector (&x)[4][2]) {
-    with_pairs(mesh, group, [&](const MeshSource& from, const auto& pair) {
-      const double* packed = from.positions.rows;
+    with_rows(mesh, group, [&](const auto& row) {
       for (int k = 0; k < 4; ++k)
-        transposed([&](std::size_t j, std::size_t part) {
-          return Double::load_unaligned(packed + kRowDoubles * vertex_ids<false>(from, pair(j))[k] + part);
-        }, x[k]);
+        transposed([&](std::size_t j, std::size_t part) { return row(j, k, part); }, x[k]);
     });
   }
 
@@ -188,14 +185,10 @@ struct Gather {
   // same operations on the same operands, so the same values.
   template <class MeshSource, class Group>
   static void differences(const MeshSource& mesh, const Group& group, Vector (&relative)[3][2]) {
-    with_pairs(mesh, group, [&](const MeshSource& from, const auto& pair) {
-      const double* packed = from.positions.rows;
+    with_rows(mesh, group, [&](const auto& row) {
       for (int i = 0; i < 3; ++i)
-        transposed([&](std::size_t j, std::size_t part) {
-          const auto ids = vertex_ids<false>(from, pair(j));
-          return Double::load_unaligned(packed + kRowDoubles * ids[i + 1] + part) -
-                 Double::load_unaligned(packed + kRowDoubles * ids[0] + part);
-        }, relative[i]);
+        transposed([&](std::size_t j, std::size_t part) { return row(j, i + 1, part) - row(j, 0, part); },
+                   relative[i]);
     });
   }
 
@@ -238,14 +231,15 @@ struct Gather {
     }
   }
 
-  // f(mesh, pair) with lane j's candidate at mesh.pairs[pair(j)]: unchecked
-  // (filter_range checked the ids, check_ids, before the group).
+  // f(row): row(j, k, part) loads part (L::size doubles from double
+  // `part` on) of the packed row of lane j's vertex k. Ids unchecked:
+  // filter_range checked them (check_ids) before the group.
   template <class MeshSource, class F>
-  static void with_pairs(const MeshSource& mesh, const ListedGroup<Arch>& group, const F& f) {
-    f(mesh, [&](std::size_t j) { return static_cast<std::size_t>(group[j]); });
+  static void with_rows(const MeshSource& mesh, const ListedGroup<Arch>& group, const F& f) {
+    f(rows_of(mesh, [&](std::size_t j) { return static_cast<std::size_t>(group[j]); }));
   }
   template <class MeshSource, class F>
-  static void with_pairs(const MeshSource& mesh, const ConsecutiveGroup<Arch>& group, const F& f) {
+  static void with_rows(const MeshSource& mesh, const ConsecutiveGroup<Arch>& group, const F& f) {
     // Lane j's candidate is pair j of the list from `first` on: its ids lie
     // at a fixed offset from one pointer.
     MeshSource from_first = mesh;
@@ -253,7 +247,15 @@ struct Gather {
     // Opaque to the optimiser, which otherwise folds the offset back into
     // each lane's index and computes eight addresses (24 instructions).
     asm("" : "+r"(from_first.pairs));
-    f(from_first, [](std::size_t j) { return j; });
+    f(rows_of(from_first, [](std::size_t j) { return j; }));
+  }
+  // Lane j's candidate at mesh.pairs[pair(j)].
+  template <class MeshSource, class Pair>
+  static auto rows_of(const MeshSource& mesh, const Pair& pair) {
+    return [mesh, pair](std::size_t j, int k, std::size_t part) {
+      const std::int64_t vertex = vertex_ids<false>(mesh, pair(j))[k];
+      return Double::load_unaligned(mesh.positions.rows + kRowDoubles * vertex + part);
+    };
   }
 
   // out[c] lane j = rows[j][c] for c below the lane count (8, 4 or 2).
@@ -579,7 +581,8 @@ void check_ids(const RawQueriesOf<K>&, std::size_t, std::size_t) {}  // nothing 
 }
 
 template <class Arch>
-[[gnu::always_inline]] inline void check_ids(const MeshEdgeEdge& mesh, std::size_t first, std::size_t count) {
+[[gnu::always_inline]] inline void check_ids(const MeshEdgeEdge& mesh, std::size_t first,
+                                             std::size_t count) {
   using Ids = xsimd::batch<std::uint32_t, Arch>;  // two candidates' four ids each
   static_assert(4 * Lanes<Arch>::size == 2 * Ids::size);
   if (count < Lanes<Arch>::size) {
@@ -593,7 +596,8 @@ template <class Arch>
 }
 
 template <class Arch>
-[[gnu::always_inline]] inline void check_ids(const MeshVertexFace& mesh, std::size_t first, std::size_t count) {
+[[gnu::always_inline]] inline void check_ids(const MeshVertexFace& mesh, std::size_t first,
+                                             std::size_t count) {
   using Pairs = xsimd::batch<std::uint64_t, Arch>;  // a candidate's (vertex, face)
   static_assert(Lanes<Arch>::size == Pairs::size);
   if (count < Lanes<Arch>::size) {
