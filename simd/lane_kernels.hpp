@@ -77,12 +77,8 @@ struct ConsecutiveGroup {
   std::int64_t operator[](std::size_t j) const { return first + static_cast<std::int64_t>(j); }
 };
 
-// Any group as a list: the rare scaled frame takes lists only (one copy of
-// its code, not one per kind of group).
-template <class Arch>
-const ListedGroup<Arch>& listed(const ListedGroup<Arch>& group) {
-  return group;
-}
+// A consecutive group as a list: the rare scaled frame takes lists only
+// (one copy of its code, not one per kind of group).
 template <class Arch>
 ListedGroup<Arch> listed(const ConsecutiveGroup<Arch>& group) {
   ListedGroup<Arch> list;
@@ -111,7 +107,6 @@ struct Gather {
     }
   }
 
-  using Rows = const double* [L::size];
   static constexpr std::size_t kPrefetchQueries = 32;  // 6 KB
   static constexpr int kQueryDoubles = 24;
 
@@ -119,7 +114,7 @@ struct Gather {
   template <Kind K>
   static void from(const RawQueriesOf<K>& raw, const ConsecutiveGroup<Arch>& group, Vector (&x)[4][2]) {
     Double coordinate[kQueryDoubles];
-    transposed(first_row(raw, group), 0, coordinate);
+    transposed_queries(first_row(raw, group), 0, coordinate);
     points(raw.kind, coordinate, x);
   }
 
@@ -142,13 +137,11 @@ struct Gather {
   // Doubles [begin, begin + n) of the rows from `data` on (one query a
   // row), transposed: lane j of coordinate[c] is double begin + c of row j.
   template <std::size_t n>
-  static void transposed(const double* data, std::size_t begin, Double (&coordinate)[n]) {
+  static void transposed_queries(const double* data, std::size_t begin, Double (&coordinate)[n]) {
     static_assert(n % L::size == 0);
-    for (std::size_t block = 0; block < n; block += L::size) {
-      Rows rows;
-      for (std::size_t j = 0; j < L::size; ++j) rows[j] = data + j * kQueryDoubles + begin + block;
-      transpose(rows, coordinate + block);
-    }
+    transpose_blocks<n>([&](std::size_t j, std::size_t block) {
+      return Double::load_unaligned(data + j * kQueryDoubles + begin + block);
+    }, coordinate);
   }
 
   // Any others: gathers.
@@ -197,26 +190,21 @@ struct Gather {
   template <class Row>
   static void transposed(const Row& row, Vector (&v)[2]) {
     Double coordinate[kRowDoubles];
-    for (std::size_t part = 0; part < 6; part += L::size) {  // the row's six coordinates
-      Double rows[L::size];
-      for (std::size_t j = 0; j < L::size; ++j) rows[j] = row(j, part);
-      transpose(rows, coordinate + part);
-    }
+    transpose_blocks<6>(row, coordinate);  // the row's six coordinates
     v[0] = {coordinate[0], coordinate[1], coordinate[2]};
     v[1] = {coordinate[3], coordinate[4], coordinate[5]};
   }
 
-  template <Kind K>
-  static void differences(const RawQueriesOf<K>& raw, const auto& group, Vector (&relative)[3][2]) {
+  template <Kind K, class Group>
+  static void differences(const RawQueriesOf<K>& raw, const Group& group, Vector (&relative)[3][2]) {
     constexpr std::size_t kTimeDoubles = kQueryDoubles / 2;  // a query's four points at one time
-    if constexpr (std::is_same_v<std::decay_t<decltype(group)>, ConsecutiveGroup<Arch>> &&
-                  kTimeDoubles % L::size == 0) {
+    if constexpr (std::is_same_v<Group, ConsecutiveGroup<Arch>> && kTimeDoubles % L::size == 0) {
       // One time after the other: 12 coordinates live instead of 24, which
       // AVX2's 16 registers could not hold.
       const double* data = first_row(raw, group);
       for (int tau = 0; tau < 2; ++tau) {
         Double coordinate[kTimeDoubles];
-        transposed(data, kTimeDoubles * tau, coordinate);
+        transposed_queries(data, kTimeDoubles * tau, coordinate);
         const auto point = [&](int k) {
           const Double* c = coordinate + 3 * reference::point_index(raw.kind, k);
           return Vector{c[0], c[1], c[2]};
@@ -258,12 +246,18 @@ struct Gather {
     };
   }
 
-  // out[c] lane j = rows[j][c] for c below the lane count (8, 4 or 2).
-  static void transpose(const Rows& rows, Double* out) {
-    Double row[L::size];
-    for (std::size_t j = 0; j < L::size; ++j) row[j] = Double::load_unaligned(rows[j]);
-    transpose(row, out);
+  // Blocks of L::size columns, those from 0 to below `used`: lane j of
+  // out[b + c] is element c of row(j, b), lane j's block from column b.
+  template <std::size_t used, class Row>
+  static void transpose_blocks(const Row& row, Double* out) {
+    for (std::size_t block = 0; block < used; block += L::size) {
+      Double rows[L::size];
+      for (std::size_t j = 0; j < L::size; ++j) rows[j] = row(j, block);
+      transpose(rows, out + block);
+    }
   }
+
+  // out[c] lane j = row[j] lane c, for c below the lane count (8, 4 or 2).
   static void transpose(const Double (&row)[L::size], Double* out) {
     if constexpr (std::is_base_of_v<xsimd::avx512f, Arch>) {
       __m512d t[8], u[8];
