@@ -43,8 +43,8 @@ struct InputReport {
   std::optional<std::int64_t> false_positives;
   std::optional<std::int64_t> false_negatives;
   double seconds = 0;  // the narrow-phase call alone, reading excluded
-  // Exact mode: queries whose decision or TOI exact arithmetic settled (0 in
-  // the other modes).
+  // Exact and conservative modes: queries whose decision (or TOI) exact
+  // arithmetic settled (0 in the other modes).
   std::int64_t exact_escalations = 0;
   // Wall-clock time of the call's slowest single query (0 without queries).
   double max_query_seconds = 0;

@@ -22,10 +22,12 @@ struct Counters {
   std::int64_t culled_by_separation = 0;  // by the separation filter (it sees what the sign filter kept)
   std::int64_t solved = 0;      // sent to the solver (candidates - culled)
   std::int64_t hits = 0;
-  std::int64_t undecided = 0;   // solver ran out of iterations: reported as hits
+  // Reported as hits without a decision: the fast solver ran out of
+  // iterations, or the exact stage reached its bound.
+  std::int64_t undecided = 0;
   std::int64_t invalid = 0;     // Status::invalid_input
-  // Exact mode: queries whose decision (or TOI) the certified path left
-  // uncertain and exact arithmetic settled.
+  // Exact and conservative modes: queries whose decision (or, exact mode,
+  // TOI) the certified path left uncertain and exact arithmetic settled.
   std::int64_t exact_escalations = 0;
   // Wall-clock seconds of the slowest query the scalar path evaluated (the
   // lane filters' culls take nanoseconds), when Options::time_queries is set;

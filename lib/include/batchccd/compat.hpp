@@ -60,8 +60,8 @@ inline constexpr std::int64_t no_max_iterations = -1;
 // tolerance: a distance in the caller's length units, > 0 (default 1e-6).
 //   Conservative mode's promise in these units: primitives that never touch
 //   are reported as a contact only when they come within `tolerance` of
-//   each other (in every coordinate), or when the iteration budget runs out
-//   (below). Smaller is tighter and may cost more iterations. It becomes
+//   each other (in every coordinate). Smaller is tighter and may cost more
+//   iterations. It becomes
 //   Options::tolerance = tolerance / extent, rounded down, where extent is
 //   the query's largest coordinate spread (max - min of one coordinate over
 //   the four points, at t0 or at t1): the relative tolerance Options
@@ -69,11 +69,11 @@ inline constexpr std::int64_t no_max_iterations = -1;
 //   When the four points coincide, Options' default is kept. Unlike Tight
 //   Inclusion's tolerance it does not set the TOI precision, which is
 //   Options::toi_tolerance (1e-7 of the unit step).
-// max_iterations: boxes the solver may examine for this query before it
-//   stops (Options::max_iterations; default 2^20; negative: no limit). A
-//   query that runs out is reported as a contact at the earliest time not
-//   yet excluded (when that is <= tmax): a possible false positive, never a
-//   false negative.
+// max_iterations: boxes the floating-point solver may examine for this
+//   query (Options::max_iterations; default 2^20; negative: no limit),
+//   capping Options::exact_stage_iterations (1,024). A query it cannot
+//   settle within them is settled with exact arithmetic (Mode::exact's
+//   exact stage), never guessed.
 //
 // Bad input: throws std::invalid_argument when tmax is not in [0, 1] or
 // tolerance is not a positive finite number (NaN included). A NaN or

@@ -11,12 +11,17 @@ enum class Mode {
   // Certified floating point: never a false negative on any finite input; a
   // false positive only when the primitives come within `tolerance` (relative
   // to the query's size) of each other. The default.
+  // A query the floating-point search cannot settle within
+  // `exact_stage_iterations` boxes (nearly parallel edges, nearly coplanar
+  // motion) goes to exact mode's exact stage rather than being reported as
+  // a guessed contact, and is counted in Counters::exact_escalations.
   // TOI: never after the first contact (a lower bound). At most
   // toi_tolerance before it when the contact is a clean crossing (a certain
-  // root of the cubic with the primitives certainly overlapping around it);
-  // earlier when a near miss within about `tolerance` comes first, which is
-  // then where the reported contact is. Queries counted in
-  // Counters::undecided report a lower bound only.
+  // root of the cubic with the primitives certainly overlapping around it),
+  // less than 2^-40 before it when the exact stage found it; earlier when a
+  // near miss within about `tolerance` comes first, which is then where the
+  // reported contact is. Queries counted in Counters::undecided report a
+  // lower bound only.
   conservative,
   // The same filter and solver in plain double arithmetic, without error
   // bounds: what most engines ship. May miss contacts.
@@ -33,7 +38,7 @@ enum class Mode {
   // rationals): no false positive and no false negative on any finite input.
   // The certified path runs first; every query whose decision it leaves
   // uncertain (a near miss within `tolerance`, a degenerate configuration,
-  // `exact_mode_iterations` exhausted) is settled with exact integer
+  // `exact_stage_iterations` exhausted) is settled with exact integer
   // arithmetic (GMP) and counted in Counters::exact_escalations. Each such
   // query costs a bounded amount of work (loops bounded by the degrees and
   // bit sizes of its polynomials).
@@ -96,23 +101,24 @@ struct Options {
   // Conservative/fast solver: a contact is reported when the primitives are
   // within `tolerance` of each other, measured relative to the query's size
   // (its largest coordinate difference from the first point). Zero,
-  // negative or NaN: nothing is within tolerance, so near contacts run into
-  // max_iterations (reported as hits, never missed).
+  // negative or NaN: nothing is within tolerance, so near contacts run out
+  // of iterations (below).
   double tolerance = 1e-9;
   // Conservative/fast solver: width of the time interval at which the first
   // contact is located (the reported TOI lies at most this much before it).
   // A fraction of the step [0, 1]; values below 2^-45 act as 2^-45.
   double toi_tolerance = 1e-7;
-  // Conservative/fast solver: boxes examined before giving up on one query;
-  // a query that reaches it is reported as a hit at the earliest time not
-  // yet excluded (conservative), and counted in Counters::undecided. Zero
-  // or negative: the solver gives up at the first box it examines.
+  // Fast solver: boxes examined before giving up on one query, which is
+  // then reported as a hit at the earliest time not yet excluded and
+  // counted in Counters::undecided. Also a cap on exact_stage_iterations.
+  // Zero or negative: the solver gives up at the first box it examines.
   std::int64_t max_iterations = 1 << 20;
-  // Exact mode: boxes the certified solver may examine on one query before
-  // the query goes to exact arithmetic (no answer is ever guessed: this only
-  // trades floating-point search for the bounded exact stage; zero or
-  // negative sends every query the solver cannot settle at once there).
-  std::int64_t exact_mode_iterations = 1 << 10;
+  // Exact and conservative modes: boxes the certified solver may examine on
+  // one query before the query goes to exact arithmetic (no answer is ever
+  // guessed: this only trades floating-point search for the bounded exact
+  // stage; zero or negative sends every query the solver cannot settle at
+  // once there).
+  std::int64_t exact_stage_iterations = 1 << 10;
 
   // Batch calls: time each query's evaluation and report the slowest in
   // Counters::max_query_seconds. Costs two clock reads a query, so it is

@@ -107,7 +107,8 @@ class InclusionSolver {
         const Search search = search_parameters(ends, budget);
         if (search == Search::excluded) continue;
         if (search == Search::out_of_iterations) return {true, time.low, true, false};
-        if (search == Search::found && settled) return {true, time.low, false, false};
+        if (search == Search::found && settled)
+          return {.hit = true, .toi = time.low, .within_tolerance = true};
         if (cubic.certain_root && time.width() > kWideInterval) {
           // Not excluded at a glance: the cubic's signs alone narrow it to
           // its first root, far cheaper than halving with a parameter search

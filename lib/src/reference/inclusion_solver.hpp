@@ -32,6 +32,10 @@ struct SolverOutcome {
   // toi_upper], a dyadic interval; refined_toi_width wide unless the cubic's
   // signs became too close to call first.
   double toi_upper = 1;
+  // A hit because the primitives certainly come within `tolerance` of each
+  // other (not proven to touch): the one uncertain hit conservative mode may
+  // report as it is.
+  bool within_tolerance = false;
 };
 
 // Decides whether the primitives meet for some t in [0, 1] by bisecting boxes

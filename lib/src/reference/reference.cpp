@@ -22,12 +22,12 @@ SolverSettings solver_settings(const Options& options) {
   settings.need_toi = options.need_toi;
   settings.tolerance = options.tolerance;
   settings.toi_tolerance = options.toi_tolerance;
-  settings.max_iterations = options.max_iterations;
-  if (options.mode == Mode::exact) {
-    // The exact stage settles whatever stays open: no need for a long search.
-    settings.max_iterations = std::min(options.max_iterations, options.exact_mode_iterations);
-    settings.refined_toi_width = kExactToiWidth;
-  }
+  // Certified modes: the exact stage settles whatever the search leaves
+  // open, so the search need not be long.
+  settings.max_iterations = settings.certified
+                                ? std::min(options.max_iterations, options.exact_stage_iterations)
+                                : options.max_iterations;
+  if (options.mode == Mode::exact) settings.refined_toi_width = kExactToiWidth;
   return settings;
 }
 
@@ -72,9 +72,12 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, bool 
     return evaluation;
   }
   const SolverOutcome outcome = solve_inclusion(kind, scaled, solver_settings(options));
-  if (exact && !outcome.certain) {
-    // Out of iterations or a contact only within tolerance: exact arithmetic
-    // settles it (DESIGN.md §3).
+  // Exact mode: every uncertain decision. Conservative mode: those but a
+  // contact within tolerance, which its promise allows; the others (out of
+  // iterations, or undecidable at the smallest boxes) would be guesses.
+  // Exact arithmetic settles them (DESIGN.md §3).
+  const bool conservative = options.mode == Mode::conservative;
+  if (!outcome.certain && (exact || (conservative && !outcome.within_tolerance))) {
     settle_exactly(kind, query, options, evaluation);
     return evaluation;
   }
