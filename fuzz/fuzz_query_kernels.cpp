@@ -65,7 +65,8 @@ bool is_certified(Mode mode) { return mode == Mode::conservative || mode == exac
 
 
 // A fuzz input must not take seconds: a smaller search budget keeps the
-// runs fast, and an exhausted budget is still answered soundly (a hit).
+// runs fast, and an exhausted budget is still answered soundly (fast mode:
+// a hit; the certified modes: the exact stage).
 Options options_for(Mode mode, bool need_toi) {
   Options options;
   options.mode = mode;
