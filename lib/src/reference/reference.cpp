@@ -38,12 +38,6 @@ void settle_exactly(Kind kind, const Query& query, const Options& options, Evalu
   evaluation.result = outcome.hit ? QueryResult{true, outcome.toi, Status::ok} : QueryResult{};
 }
 
-bool all_finite(const Query& query) {
-  for (const Vec3& point : query.points)
-    if (!point.allFinite()) return false;
-  return true;
-}
-
 Evaluation evaluate(Kind kind, const Query& query, const Options& options, bool filtered) {
   Evaluation evaluation;
   if (options.mode == Mode::cubic) {  // the baseline as it is, without the scaled frame

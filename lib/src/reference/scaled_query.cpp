@@ -41,13 +41,18 @@ double largest_magnitude(const Query& query) {
 
 }  // namespace
 
+bool all_finite(const Query& query) {
+  for (const Vec3& point : query.points)
+    if (!point.allFinite()) return false;
+  return true;
+}
+
 ScaledQuery scale_query(Kind kind, const Query& query) {
   ScaledQuery scaled;
-  for (const Vec3& point : query.points)
-    if (!point.allFinite()) {
-      scaled.finite = false;
-      return scaled;
-    }
+  if (!all_finite(query)) {
+    scaled.finite = false;
+    return scaled;
+  }
   const double input_magnitude = largest_magnitude(query);
   if (input_magnitude == 0) {
     scaled.coincident = true;

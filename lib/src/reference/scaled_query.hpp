@@ -28,6 +28,9 @@ struct ScaledQuery {
 
 ScaledQuery scale_query(Kind kind, const Query& query);
 
+// Every coordinate finite (no NaN, no infinity).
+bool all_finite(const Query& query);
+
 // Inputs at least this large are quartered before the differences are taken
 // (their differences could overflow); shared with the lane kernels.
 inline constexpr double kHugeInput = 0x1p1022;
