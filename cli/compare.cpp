@@ -23,7 +23,7 @@ struct MethodEntry {
 
 constexpr MethodEntry kMethods[] = {
     {Method::exact, "exact", "decisions of exact arithmetic (certified path, GMP for the uncertain)"},
-    {Method::conservative, "conservative", "certified floating point, both lane filters (default)"},
+    {Method::conservative, "conservative", "certified floating point (GMP where it cannot settle), both lane filters (default)"},
     {Method::fast, "fast", "the same filters and solver in plain double arithmetic"},
     {Method::cubic, "cubic", "unfiltered cubic solver, roots in double (the baseline)"},
     {Method::dnf, "dnf", "conservative with a DNF-style filter: four signs, no V = 2 step"},
