@@ -101,8 +101,8 @@ struct Options {
   // Conservative/fast solver: a contact is reported when the primitives are
   // within `tolerance` of each other, measured relative to the query's size
   // (its largest coordinate difference from the first point). Zero,
-  // negative or NaN: nothing is within tolerance, so near contacts run out
-  // of iterations (below).
+  // negative or NaN: nothing is within tolerance, so near contacts go to
+  // the exact stage (conservative) or run out of iterations (fast).
   double tolerance = 1e-9;
   // Conservative/fast solver: width of the time interval at which the first
   // contact is located (the reported TOI lies at most this much before it).
