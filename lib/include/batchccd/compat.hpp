@@ -62,10 +62,10 @@ inline constexpr std::int64_t no_max_iterations = -1;
 //   are reported as a contact only when they come within `tolerance` of
 //   each other (in every coordinate). Smaller is tighter and may cost more
 //   iterations. It becomes Options::tolerance = tolerance / extent,
-//   rounded down, where extent is
-//   the query's largest coordinate spread (max - min of one coordinate over
-//   the four points, at t0 or at t1): the relative tolerance Options
-//   applies, times the size the query is scaled by, is then <= tolerance.
+//   rounded down, where extent is the query's largest coordinate spread
+//   (max - min of one coordinate over the four points, at t0 or at t1): the
+//   relative tolerance Options applies, times the size the query is scaled
+//   by, is then <= tolerance.
 //   When the four points coincide, Options' default is kept. Unlike Tight
 //   Inclusion's tolerance it does not set the TOI precision, which is
 //   Options::toi_tolerance (1e-7 of the unit step).
