@@ -46,21 +46,21 @@ struct SignTest {
   }
 };
 
-// The test of a query's differences (uncertified: plain signs).
+// The test of a query's differences (uncertified: plain signs, every
+// bound zero). The magnitudes are bounded either way and the bounds' scales
+// zeroed when uncertified: one path, where a branch between the two made
+// the lane kernels keep the whole test on the stack.
 template <class T>
 SignTest<T> sign_test(const Vector3<T> (&r)[3][2], const T (&largest)[3][2], T coefficient_floor,
                       bool certified) {
   SignTest<T> test{bernstein_cubic(r[0][0], r[0][1], r[1][0], r[1][1], r[2][0], r[2][1]), T(0), T(0), T(0),
                    T(0)};
-  if (!certified) {
-    for (T& m : test.cubic.magnitude) m = T(0);
-    return test;
-  }
   const auto& n = largest;
   bernstein_magnitude_bounds(test.cubic, n[0][0], n[0][1], n[1][0], n[1][1], n[2][0], n[2][1]);
   const ErrorModel whole = coefficient_error(0.0), half = half_coefficient_error(whole);
-  test.relative = T(whole.relative), test.floor = coefficient_floor;
-  test.half_relative = T(half.relative), test.half_floor = T(kHalfWeightSum) * coefficient_floor;
+  const double scale = certified ? 1.0 : 0.0;  // 0 * a finite magnitude: a zero bound
+  test.relative = T(scale * whole.relative), test.floor = T(scale) * coefficient_floor;
+  test.half_relative = T(scale * half.relative), test.half_floor = T(scale * kHalfWeightSum) * coefficient_floor;
   return test;
 }
 
