@@ -241,8 +241,7 @@ struct Gather {
   template <class MeshSource, class Pair>
   static auto rows_of(const MeshSource& mesh, const Pair& pair) {
     return [mesh, pair](std::size_t j, int k, std::size_t part) {
-      const std::int64_t vertex = vertex_ids<false>(mesh, pair(j))[k];
-      return Double::load_unaligned(mesh.positions.rows + kRowDoubles * vertex + part);
+      return Double::load_unaligned(mesh.positions.rows + row_starts<false>(mesh, pair(j))[k] + part);
     };
   }
 
@@ -580,7 +579,7 @@ template <class Arch>
   using Ids = xsimd::batch<std::uint32_t, Arch>;  // two candidates' four ids each
   static_assert(4 * Lanes<Arch>::size == 2 * Ids::size);
   if (count < Lanes<Arch>::size) {
-    for (std::size_t i = first; i < first + count; ++i) vertex_ids(mesh, i);
+    for (std::size_t i = first; i < first + count; ++i) row_starts(mesh, i);
     return;
   }
   const auto* ids = reinterpret_cast<const std::uint32_t*>(mesh.pairs[first].data());
@@ -595,7 +594,7 @@ template <class Arch>
   using Pairs = xsimd::batch<std::uint64_t, Arch>;  // a candidate's (vertex, face)
   static_assert(Lanes<Arch>::size == Pairs::size);
   if (count < Lanes<Arch>::size) {
-    for (std::size_t i = first; i < first + count; ++i) vertex_ids(mesh, i);
+    for (std::size_t i = first; i < first + count; ++i) row_starts(mesh, i);
     return;
   }
   const Pairs pair = Pairs::load_unaligned(reinterpret_cast<const std::uint64_t*>(mesh.pairs[first].data()));
