@@ -51,6 +51,10 @@ struct MeshPositions {
   std::int64_t vertices;
 };
 
+// Where vertex v's row starts among MeshPositions::rows. Always inlined:
+// the lane kernels, compiled with other flags, call it.
+[[gnu::always_inline]] inline std::int64_t row_start(std::int64_t vertex) { return kRowDoubles * vertex; }
+
 // Owns the packed rows of a mesh, made from Eigen's column-major n x 3
 // matrices (x, y, z columns of n each), once per call: O(vertices), where
 // the work is O(candidates).
@@ -71,7 +75,7 @@ class PackedPositions {
   // Rows [begin, end): callers may fill disjoint ranges in parallel.
   void pack(const double* t0, const double* t1, std::int64_t begin, std::int64_t end) {
     for (std::int64_t v = begin; v < end; ++v) {
-      double* row = rows_.get() + kRowDoubles * v;
+      double* row = rows_.get() + row_start(v);
       for (int c = 0; c < 3; ++c) {
         row[c] = t0[v + c * vertices_];
         row[c + 3] = t1[v + c * vertices_];
@@ -113,7 +117,6 @@ class PackedFaces {
   }
 
  private:
-  static std::int64_t row_start(int vertex) { return std::int64_t{kRowDoubles} * vertex; }
   std::vector<std::array<std::int64_t, 4>> rows_;
 };
 
@@ -153,18 +156,18 @@ template <bool check = true>
   const auto [vertex, face] = mesh.pairs[i];
   if constexpr (check) {
     const std::int64_t* f = mesh.faces.rows + 4 * checked(face, mesh.faces.count);
-    return {f[0], f[1], f[2], kRowDoubles * checked(vertex, mesh.positions.vertices)};
+    return {f[0], f[1], f[2], row_start(checked(vertex, mesh.positions.vertices))};
   } else {
     const std::int64_t* f = mesh.faces.rows + 4 * static_cast<std::int64_t>(face);
-    return {f[0], f[1], f[2], kRowDoubles * static_cast<std::int64_t>(vertex)};
+    return {f[0], f[1], f[2], row_start(vertex)};
   }
 }
 template <bool check = true>
 [[gnu::always_inline]] inline std::array<std::int64_t, 4> row_starts(const MeshEdgeEdge& mesh, std::size_t i) {
   const auto& e = mesh.pairs[i];
   const std::int64_t n = mesh.positions.vertices;
-  const auto id = [n](int v) { return check ? checked(v, n) : static_cast<std::int64_t>(v); };
-  return {kRowDoubles * id(e[0]), kRowDoubles * id(e[1]), kRowDoubles * id(e[2]), kRowDoubles * id(e[3])};
+  const auto start = [n](int v) { return row_start(check ? checked(v, n) : v); };
+  return {start(e[0]), start(e[1]), start(e[2]), start(e[3])};
 }
 
 template <class MeshSource>
