@@ -91,17 +91,29 @@ struct BernsteinCubic {
   T magnitude[4];  // the same sums over absolute values
 };
 
+// The coefficients, with `cross` as the cross product: since
+// A x B = (1-t)^2 a0b0 + (1-t)t (a1b0 + a0b1) + t^2 a1b1, the two mixed
+// products are added before the dot products (the same terms as dotting
+// each, so the same error bound: 7 roundings on the longest path either
+// way, error_bounds.hpp; 6 multiplications fewer).
+template <class T, class Cross>
+void bernstein_coefficients(const Cross& cross, const Vector3<T>& a0, const Vector3<T>& a1,
+                            const Vector3<T>& b0, const Vector3<T>& b1, const Vector3<T>& c0,
+                            const Vector3<T>& c1, T (&coefficient)[4]) {
+  const Vector3<T> a0b0 = cross(a0, b0), a1b1 = cross(a1, b1);
+  const Vector3<T> mixed = cross(a1, b0) + cross(a0, b1);
+  coefficient[0] = dot(a0b0, c0);
+  coefficient[1] = dot(mixed, c0) + dot(a0b0, c1);
+  coefficient[2] = dot(a1b1, c0) + dot(mixed, c1);
+  coefficient[3] = dot(a1b1, c1);
+}
+
 template <class T>
 BernsteinCubic<T> bernstein_cubic(const Vector3<T>& a0, const Vector3<T>& a1,
                                   const Vector3<T>& b0, const Vector3<T>& b1,
                                   const Vector3<T>& c0, const Vector3<T>& c1) {
-  const Vector3<T> a0b0 = cross(a0, b0), a1b0 = cross(a1, b0);
-  const Vector3<T> a0b1 = cross(a0, b1), a1b1 = cross(a1, b1);
   BernsteinCubic<T> cubic;
-  cubic.coefficient[0] = dot(a0b0, c0);
-  cubic.coefficient[1] = dot(a1b0, c0) + dot(a0b1, c0) + dot(a0b0, c1);
-  cubic.coefficient[2] = dot(a1b1, c0) + dot(a1b0, c1) + dot(a0b1, c1);
-  cubic.coefficient[3] = dot(a1b1, c1);
+  bernstein_coefficients(cross<T>, a0, a1, b0, b1, c0, c1, cubic.coefficient);
   return cubic;
 }
 
@@ -111,26 +123,23 @@ template <class T>
 void bernstein_magnitudes(BernsteinCubic<T>& cubic, const Vector3<T>& a0, const Vector3<T>& a1,
                           const Vector3<T>& b0, const Vector3<T>& b1, const Vector3<T>& c0,
                           const Vector3<T>& c1) {
-  const Vector3<T> a0b0 = cross_magnitude(a0, b0), a1b0 = cross_magnitude(a1, b0);
-  const Vector3<T> a0b1 = cross_magnitude(a0, b1), a1b1 = cross_magnitude(a1, b1);
-  cubic.magnitude[0] = dot(a0b0, c0);
-  cubic.magnitude[1] = dot(a1b0, c0) + dot(a0b1, c0) + dot(a0b0, c1);
-  cubic.magnitude[2] = dot(a1b1, c0) + dot(a1b0, c1) + dot(a0b1, c1);
-  cubic.magnitude[3] = dot(a1b1, c1);
+  bernstein_coefficients(cross_magnitude<T>, a0, a1, b0, b1, c0, c1, cubic.magnitude);
 }
 
 // Upper bounds of the magnitudes that cost a third of bernstein_magnitudes,
 // for the filter, from each factor's largest component magnitude (na0 =
 // max |a0_i|, and so on): each of a triple product's 6 terms is at most the
-// product of its factors' largest components. (Rounding may leave a bound
-// up to 5 u below that product, which the error models' spare room covers.)
+// product of its factors' largest components. Grouped as the coefficients
+// are, with the 6 taken into the c factors. (Rounding may leave a bound up
+// to 5 u below that product, which the error models' spare room covers.)
 template <class T>
 void bernstein_magnitude_bounds(BernsteinCubic<T>& cubic, T na0, T na1, T nb0, T nb1, T nc0, T nc1) {
-  const T a0b0 = na0 * nb0, a1b0 = na1 * nb0, a0b1 = na0 * nb1, a1b1 = na1 * nb1;
-  cubic.magnitude[0] = T(6) * (a0b0 * nc0);
-  cubic.magnitude[1] = T(6) * (a1b0 * nc0 + a0b1 * nc0 + a0b0 * nc1);
-  cubic.magnitude[2] = T(6) * (a1b1 * nc0 + a1b0 * nc1 + a0b1 * nc1);
-  cubic.magnitude[3] = T(6) * (a1b1 * nc1);
+  const T a0b0 = na0 * nb0, a1b1 = na1 * nb1, mixed = na1 * nb0 + na0 * nb1;
+  const T c0 = T(6) * nc0, c1 = T(6) * nc1;
+  cubic.magnitude[0] = a0b0 * c0;
+  cubic.magnitude[1] = mixed * c0 + a0b0 * c1;
+  cubic.magnitude[2] = a1b1 * c0 + mixed * c1;
+  cubic.magnitude[3] = a1b1 * c1;
 }
 
 // Bernstein coefficients of the two halves [0, 1/2] and [1/2, 1] (de

@@ -19,8 +19,10 @@ struct ErrorModel {
 };
 
 // Coefficients of the cubic from the scaled differences themselves (one
-// rounding each): 3 input roundings + 5 in a triple product + 2 in a sum of
-// three = 10 u, bounded by 16 u. Every term is a product of three factors
+// rounding each): 3 input roundings + 7 on bernstein_coefficients' longest
+// path (a product, the cross product's difference, the mixed products' sum,
+// the product with c, two in the dot, the coefficient's sum) = 10 u,
+// bounded by 16 u. Every term is a product of three factors
 // below 2 in magnitude, 6 terms a triple product, 3 products a sum: a factor
 // floor e perturbs a coefficient by at most 216 e.
 template <class T>  // T: double, or a batch of lanes
