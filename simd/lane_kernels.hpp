@@ -92,68 +92,51 @@ template <class Arch>
 struct Gather {
   using L = Lanes<Arch>;
   using Double = typename L::Double;
-  using Index = typename L::Index;
   using Vector = typename L::Vector;
-
-  // The processor's gather instruction where it has one (xsimd 8.1 loads
-  // lane by lane).
-  static Double gather(const double* base, const Index& index) {
-    if constexpr (std::is_base_of_v<xsimd::avx512f, Arch>) {
-      return _mm512_i64gather_pd(index, base, 8);
-    } else if constexpr (std::is_base_of_v<xsimd::avx2, Arch>) {
-      return _mm256_i64gather_pd(base, index, 8);
-    } else {
-      return Double::gather(base, index);
-    }
-  }
 
   static constexpr std::size_t kPrefetchQueries = 32;  // 6 KB
   static constexpr int kQueryDoubles = 24;
 
-  // Consecutive raw queries lie in one block of rows: loads and transposes.
-  template <Kind K>
-  static void from(const RawQueriesOf<K>& raw, const ConsecutiveGroup<Arch>& group, Vector (&x)[4][2]) {
+  // Raw queries: each lane's row (one query) loaded and transposed, for
+  // any group (a gather per coordinate, 24 a group, took the second pass
+  // longer than the first).
+  template <Kind K, class Group>
+  static void from(const RawQueriesOf<K>& raw, const Group& group, Vector (&x)[4][2]) {
     Double coordinate[kQueryDoubles];
-    transposed_queries(first_row(raw, group), 0, coordinate);
+    transposed_queries(query_rows(raw, group), 0, coordinate);
     points(raw.kind, coordinate, x);
   }
 
-  // The group's first row. Streamed queries: ask for those kPrefetchQueries
+  // rows(j): lane j's row. Consecutive queries lie in one block of rows
+  // from the group's first. Streamed ones: ask for those kPrefetchQueries
   // ahead now, so their cache lines arrive while these compute (the
   // hardware's prefetcher alone left half the read bandwidth unused). An
   // address, never dereferenced: past the end of the queries it is harmless.
   template <Kind K>
-  static const double* first_row(const RawQueriesOf<K>& raw, const ConsecutiveGroup<Arch>& group) {
-    const double* data = raw.queries[0].points[0].data() + group.first * kQueryDoubles;
+  static auto query_rows(const RawQueriesOf<K>& raw, const ConsecutiveGroup<Arch>& group) {
+    const double* first = raw.queries[0].points[0].data() + group.first * kQueryDoubles;
     if (raw.stream) {
       const std::uintptr_t ahead =
-          reinterpret_cast<std::uintptr_t>(data) + kPrefetchQueries * kQueryDoubles * sizeof(double);
+          reinterpret_cast<std::uintptr_t>(first) + kPrefetchQueries * kQueryDoubles * sizeof(double);
       for (std::size_t line = 0; line < L::size * kQueryDoubles * sizeof(double); line += 64)
         _mm_prefetch(reinterpret_cast<const char*>(ahead + line), _MM_HINT_T0);
     }
-    return data;
+    return [first](std::size_t j) { return first + j * kQueryDoubles; };
+  }
+  template <Kind K>
+  static auto query_rows(const RawQueriesOf<K>& raw, const ListedGroup<Arch>& group) {
+    const double* data = raw.queries[0].points[0].data();
+    return [data, &group](std::size_t j) { return data + group[j] * kQueryDoubles; };
   }
 
-  // Doubles [begin, begin + n) of the rows from `data` on (one query a
-  // row), transposed: lane j of coordinate[c] is double begin + c of row j.
-  template <std::size_t n>
-  static void transposed_queries(const double* data, std::size_t begin, Double (&coordinate)[n]) {
+  // Doubles [begin, begin + n) of each lane's row, transposed: lane j of
+  // coordinate[c] is double begin + c of rows(j).
+  template <std::size_t n, class Rows>
+  static void transposed_queries(const Rows& rows, std::size_t begin, Double (&coordinate)[n]) {
     static_assert(n % L::size == 0);
     transpose_blocks<n>([&](std::size_t j, std::size_t block) {
-      return Double::load_unaligned(data + j * kQueryDoubles + begin + block);
+      return Double::load_unaligned(rows(j) + begin + block);
     }, coordinate);
-  }
-
-  // Any others: gathers.
-  template <Kind K>
-  static void from(const RawQueriesOf<K>& raw, const ListedGroup<Arch>& group, Vector (&x)[4][2]) {
-    const double* data = raw.queries[0].points[0].data();
-    alignas(64) std::int64_t offset[L::size];
-    for (std::size_t j = 0; j < L::size; ++j) offset[j] = group[j] * kQueryDoubles;
-    const Index index = Index::load_aligned(offset);
-    Double coordinate[kQueryDoubles];
-    for (int c = 0; c < kQueryDoubles; ++c) coordinate[c] = gather(data + c, index);
-    points(raw.kind, coordinate, x);
   }
 
   // A query's coordinates in its points' order into x.
@@ -198,13 +181,13 @@ struct Gather {
   template <Kind K, class Group>
   static void differences(const RawQueriesOf<K>& raw, const Group& group, Vector (&relative)[3][2]) {
     constexpr std::size_t kTimeDoubles = kQueryDoubles / 2;  // a query's four points at one time
-    if constexpr (std::is_same_v<Group, ConsecutiveGroup<Arch>> && kTimeDoubles % L::size == 0) {
+    if constexpr (kTimeDoubles % L::size == 0) {
       // One time after the other: 12 coordinates live instead of 24, which
       // AVX2's 16 registers could not hold.
-      const double* data = first_row(raw, group);
+      const auto rows = query_rows(raw, group);
       for (int tau = 0; tau < 2; ++tau) {
         Double coordinate[kTimeDoubles];
-        transposed_queries(data, kTimeDoubles * tau, coordinate);
+        transposed_queries(rows, kTimeDoubles * tau, coordinate);
         const auto point = [&](int k) {
           const Double* c = coordinate + 3 * reference::point_index(raw.kind, k);
           return Vector{c[0], c[1], c[2]};
