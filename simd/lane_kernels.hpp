@@ -326,18 +326,47 @@ std::size_t compress(std::uint32_t keep, std::uint32_t first, std::uint32_t* out
   }
 }
 
-// Magnitudes as bit patterns (reference::largest_magnitude): for
-// non-negative doubles the orders agree, and a NaN or an infinity shows as
-// a non-finite maximum. One integer max a value.
+// Largest component magnitudes, exact for vectors without a NaN. With a NaN
+// component `largest` may miss it on AVX-512 (the range instruction passes
+// over a quiet NaN): harmless where the value only bounds an expression
+// that holds the NaN itself (the cubic's coefficients are NaN then, and
+// no comparison with them culls). Where a NaN must show, as in a test of
+// finiteness, `largest_or_nan` (bit patterns, as
+// reference::largest_magnitude: their order agrees with that of
+// non-negative doubles and puts a NaN above infinity).
 template <class Arch>
-struct MagnitudeBits {
+struct Magnitudes {
   using L = Lanes<Arch>;
   using Index = typename L::Index;
   using Double = typename L::Double;
-  static Index of(const Double& x) { return xsimd::bitwise_cast<Index>(x) & Index(0x7fffffffffffffffll); }
-  static Index largest(const typename L::Vector& v) {
-    return xsimd::max(xsimd::max(of(v.x), of(v.y)), of(v.z));
+  using Vector = typename L::Vector;
+
+  static Double largest(const Vector& v) {
+    if constexpr (kRange) {
+      return larger(larger(v.x, v.y), v.z);
+    } else {
+      return largest_or_nan(v);
+    }
   }
+  // Of two magnitudes (non-negative values).
+  static Double larger(const Double& a, const Double& b) {
+    if constexpr (kRange) {
+      return _mm512_range_pd(a, b, 0b1011);  // max(|a|, |b|), sign cleared
+    } else {
+      return larger_or_nan(a, b);
+    }
+  }
+
+  static Double largest_or_nan(const Vector& v) {
+    return xsimd::bitwise_cast<Double>(xsimd::max(xsimd::max(bits(v.x), bits(v.y)), bits(v.z)));
+  }
+  static Double larger_or_nan(const Double& a, const Double& b) {
+    return xsimd::bitwise_cast<Double>(xsimd::max(xsimd::bitwise_cast<Index>(a), xsimd::bitwise_cast<Index>(b)));
+  }
+
+ private:
+  static constexpr bool kRange = std::is_base_of_v<xsimd::avx512dq, Arch>;
+  static Index bits(const Double& x) { return xsimd::bitwise_cast<Index>(x) & Index(0x7fffffffffffffffll); }
 };
 
 // reference::scale_query, lane by lane, from loaded positions.
@@ -348,7 +377,6 @@ struct ScaledFrame {
   using Mask = typename L::Mask;
   using Index = typename L::Index;
   using Vector = typename L::Vector;
-  using Bits = MagnitudeBits<Arch>;
 
   Vector relative[3][2];
   Double absolute_error;
@@ -364,13 +392,9 @@ struct ScaledFrame {
 
  private:
   void scale(Vector (&x)[4][2]) {
-    Index magnitude[24];
-    for (int j = 0; j < 8; ++j) {
-      const Vector& p = (&x[0][0])[j];
-      magnitude[3 * j] = Bits::of(p.x), magnitude[3 * j + 1] = Bits::of(p.y), magnitude[3 * j + 2] = Bits::of(p.z);
-    }
-    const auto max = [](const auto& a, const auto& b) { return xsimd::max(a, b); };
-    const Double largest = xsimd::bitwise_cast<Double>(pairwise<24>(magnitude, max));
+    Double magnitude[8];
+    for (int j = 0; j < 8; ++j) magnitude[j] = Magnitudes<Arch>::largest_or_nan((&x[0][0])[j]);
+    const Double largest = pairwise<8>(magnitude, Magnitudes<Arch>::larger_or_nan);
     const Mask finite = largest <= Double(std::numeric_limits<double>::max());
     // Inputs near overflow quartered first. That is rare, so a group of
     // lanes without one skips the multiplications.
@@ -380,15 +404,13 @@ struct ScaledFrame {
       for (auto& point : x)
         for (Vector& p : point) p = {p.x * factor, p.y * factor, p.z * factor};
     }
-    Double difference[18];
+    Double difference[6];
     for (int tau = 0; tau < 2; ++tau)
       for (int i = 0; i < 3; ++i) {
-        const Vector d = x[i + 1][tau] - x[0][tau];
-        relative[i][tau] = d;
-        Double* m = difference + 3 * (2 * i + tau);
-        m[0] = xsimd::abs(d.x), m[1] = xsimd::abs(d.y), m[2] = xsimd::abs(d.z);
+        relative[i][tau] = x[i + 1][tau] - x[0][tau];
+        difference[2 * i + tau] = Magnitudes<Arch>::largest(relative[i][tau]);
       }
-    const Double largest_difference = pairwise<18>(difference, max);
+    const Double largest_difference = pairwise<6>(difference, Magnitudes<Arch>::larger);
     const Mask distinct = largest_difference > Double(0.0);
     const auto scale = L::inverse_power_of_two(xsimd::select(distinct, largest_difference, Double(1.0)));
     scale.scale(&relative[0][0], 6);
@@ -406,8 +428,6 @@ template <class Arch>
 struct DirectDifferences {
   using L = Lanes<Arch>;
   using Double = typename L::Double;
-  using Index = typename L::Index;
-  using Bits = MagnitudeBits<Arch>;
 
   typename L::Vector relative[3][2];
   Double largest[3][2];
@@ -418,19 +438,27 @@ struct DirectDifferences {
     // Only the differences: the positions, kept for the rare scaled frame,
     // spilled to the stack throughout (it loads them again).
     Gather<Arch>::differences(source, group, relative);
-    Index largest_bits[6];
     for (int i = 0; i < 3; ++i)
-      for (int tau = 0; tau < 2; ++tau) {
-        largest_bits[2 * i + tau] = Bits::largest(relative[i][tau]);
-        largest[i][tau] = xsimd::bitwise_cast<Double>(largest_bits[2 * i + tau]);
-      }
-    overall = xsimd::bitwise_cast<Double>(
-        pairwise<6>(largest_bits, [](const Index& a, const Index& b) { return xsimd::max(a, b); }));
+      for (int tau = 0; tau < 2; ++tau) largest[i][tau] = Magnitudes<Arch>::largest(relative[i][tau]);
+    overall = pairwise<6>(&largest[0][0], Magnitudes<Arch>::larger);
   }
 
-  // Lanes whose largest lies in [lowest, highest] (so all finite).
+  // Lanes whose largest lies in [lowest, highest], so finite but for a NaN
+  // `largest` may miss (Magnitudes): the sign filter's coefficients hold it
+  // and cull nothing; other filters ask for within_without_nan.
   typename L::Mask within(double lowest, double highest) const {
     return (overall >= Double(lowest)) & (overall <= Double(highest));
+  }
+  // The same without a NaN. Within a window the differences are finite
+  // and their sum cannot overflow, so it is NaN only through a NaN.
+  typename L::Mask within_without_nan(double lowest, double highest) const {
+    Double component[18];
+    for (int v = 0; v < 6; ++v) {
+      const auto& d = (&relative[0][0])[v];
+      component[3 * v] = d.x, component[3 * v + 1] = d.y, component[3 * v + 2] = d.z;
+    }
+    const Double sum = pairwise<18>(component, [](const Double& a, const Double& b) { return a + b; });
+    return within(lowest, highest) & (sum == sum);
   }
 };
 
@@ -446,7 +474,7 @@ template <class Arch, class Source>
   Double largest[3][2];
   for (int i = 0; i < 3; ++i)
     for (int tau = 0; tau < 2; ++tau)
-      largest[i][tau] = xsimd::bitwise_cast<Double>(MagnitudeBits<Arch>::largest(frame.relative[i][tau]));
+      largest[i][tau] = Magnitudes<Arch>::largest(frame.relative[i][tau]);
   const auto culled = reference::sign_filter_culls(frame.relative, largest,
                                                    reference::coefficient_floor(frame.absolute_error),
                                                    settings.certified, settings.subdivide);
@@ -525,8 +553,8 @@ template <class Arch, class Source>
     culled.sign = lane_bits<Arch>(direct & test.halves()) & lanes_in_use;
   }
   if (settings.separation) {
-    const auto direct =
-        differences.within(reference::kSeparationDirectLowest, reference::kSeparationDirectHighest);
+    const auto direct = differences.within_without_nan(reference::kSeparationDirectLowest,
+                                                       reference::kSeparationDirectHighest);
     const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
     const std::uint32_t kept = ~culled.sign & lanes_in_use;
     culled.separation = kept & lane_bits<Arch>(direct & reference::separation_filter_culls(
