@@ -126,7 +126,7 @@ void bernstein_magnitudes(BernsteinCubic<T>& cubic, const Vector3<T>& a0, const 
   bernstein_coefficients(cross_magnitude<T>, a0, a1, b0, b1, c0, c1, cubic.magnitude);
 }
 
-// Upper bounds of the magnitudes that cost a third of bernstein_magnitudes,
+// Upper bounds of the magnitudes at a fifth of bernstein_magnitudes' cost,
 // for the filter, from each factor's largest component magnitude (na0 =
 // max |a0_i|, and so on): each of a triple product's 6 terms is at most the
 // product of its factors' largest components. Grouped as the coefficients
