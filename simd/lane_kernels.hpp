@@ -375,7 +375,6 @@ struct ScaledFrame {
   using L = Lanes<Arch>;
   using Double = typename L::Double;
   using Mask = typename L::Mask;
-  using Index = typename L::Index;
   using Vector = typename L::Vector;
 
   Vector relative[3][2];
