@@ -1,6 +1,7 @@
 #include "batchccd/batch.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <stdexcept>
 #include <vector>
@@ -15,6 +16,7 @@
 
 #include "mesh_validation.hpp"
 #include "reference/reference.hpp"
+#include "reference/scaled_query.hpp"
 #include "simd/filter.hpp"
 #include "simd/sources.hpp"
 
@@ -62,13 +64,35 @@ void in_arena(const Options& options, const Work& work) {
 // outcome is the same for any thread count.
 using Partials = tbb::combinable<Partial>;
 
+// A list's minimum separations: one for all, or one per candidate.
+struct Separations {
+  double all = 0;
+  const double* each = nullptr;  // one per candidate, when not null
+  bool any() const { return all > 0 || each != nullptr; }
+  double at(std::size_t i) const { return each ? each[i] : all; }
+};
+
 // The lane filters over candidates [0, count) of a source, in batches:
-// the survivors' indices, in no particular order.
+// the survivors' indices, in no particular order. With separations the
+// scalar path runs, one candidate at a time.
 template <class Source>
 std::vector<std::size_t> filter_source(const Source& source, std::size_t count,
-                                       simd::FilterFunction<Source> filter, const Options& options,
-                                       Partials& partials) {
+                                       simd::FilterFunction<Source> lanes, const Options& options,
+                                       const Separations& separations, Partials& partials) {
   const reference::FilterSettings settings = reference::filter_settings(options);
+  const auto filter = [&](std::size_t begin, std::size_t end, std::uint32_t* kept, simd::FilterCounts& culls) {
+    if (!separations.any()) return lanes(source, begin, end, settings, kept, culls);
+    std::size_t survivors = 0;
+    reference::FilterSettings within = settings;
+    for (std::size_t i = begin; i < end; ++i) {
+      within.min_distance = separations.at(i);
+      const reference::FilterVerdict verdict = reference::run_filters(source.kind, simd::query_at(source, i), within);
+      culls.sign += verdict.sign;
+      culls.separation += verdict.separation;
+      if (!verdict.culled()) kept[survivors++] = static_cast<std::uint32_t>(i - begin);
+    }
+    return survivors;
+  };
   tbb::enumerable_thread_specific<std::vector<std::uint32_t>> batch_survivors;
   tbb::enumerable_thread_specific<std::vector<std::size_t>> survivors;
   tbb::parallel_for(
@@ -77,7 +101,7 @@ std::vector<std::size_t> filter_source(const Source& source, std::size_t count,
         std::vector<std::uint32_t>& kept_in_batch = batch_survivors.local();
         if (kept_in_batch.size() < range.size()) kept_in_batch.resize(std::max(range.size(), simd::kFilterBatch));
         simd::FilterCounts culls;
-        const std::size_t kept = filter(source, range.begin(), range.end(), settings, kept_in_batch.data(), culls);
+        const std::size_t kept = filter(range.begin(), range.end(), kept_in_batch.data(), culls);
         Counters& counters = partials.local().counters;
         counters.culled += static_cast<std::int64_t>(range.size() - kept);
         counters.culled_by_sign += static_cast<std::int64_t>(culls.sign);
@@ -97,11 +121,14 @@ std::vector<std::size_t> filter_source(const Source& source, std::size_t count,
 // for the rest.
 template <class Source>
 void solve_source(const Source& source, std::size_t count, const std::vector<std::size_t>* survivors,
-                  const Options& options, std::size_t offset, BatchResult& batch, Partials& partials) {
+                  const Options& options, const Separations& separations, std::size_t offset,
+                  BatchResult& batch, Partials& partials) {
   const bool filtered = survivors != nullptr;
   const auto evaluate = [&](std::size_t i, Partial& partial) {
+    Options own = options;  // a candidate's own separation
+    own.min_distance = separations.at(i);
     const reference::Evaluation e =
-        reference::evaluate_query(source.kind, simd::query_at(source, i), options, filtered);
+        reference::evaluate_query(source.kind, simd::query_at(source, i), own, filtered);
     tally(e, partial);
     if (options.per_candidate_results) batch.results[offset + i] = e.result;
     if (options.hit_list && e.result.hit) partial.hits.push_back({offset + i, e.result.toi, e.result.status});
@@ -173,19 +200,44 @@ void reset(BatchResult& out, std::size_t count, const Options& options) {
   out.counters = {};
 }
 
-void batch_ccd(Kind kind, std::span<const Query> queries, const Options& options, BatchResult& out) {
+// The separations of one list: checked (length, values) and wrapped.
+Separations separations_of(std::span<const double> each, std::size_t count, const char* list,
+                           const Options& options) {
+  if (each.empty()) return {options.min_distance, nullptr};
+  if (each.size() != count)
+    throw std::invalid_argument(std::string("batchccd: ") + list + " min_distances has " +
+                                std::to_string(each.size()) + " values for " + std::to_string(count) +
+                                " candidates");
+  for (std::size_t i = 0; i < each.size(); ++i)
+    if (!(each[i] >= 0 && std::isfinite(each[i])) || (options.mode == Mode::cubic && each[i] > 0))
+      throw std::invalid_argument(std::string("batchccd: ") + list + " candidate " + std::to_string(i) +
+                                  ": min_distance must be >= 0 and finite (0 in mode cubic), got " +
+                                  std::to_string(each[i]));
+  return {0, each.data()};
+}
+
+void batch_ccd(Kind kind, std::span<const Query> queries, std::span<const double> min_distances,
+               const Options& options, BatchResult& out) {
+  validate(options);
+  const Separations separations = separations_of(min_distances, queries.size(), to_string(kind), options);
   const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
   const bool filtered = options.mode != Mode::cubic;  // the baseline runs unfiltered
-  const simd::RawQueries source = simd::raw_queries(kind, queries.data(), queries.size());
+  const simd::RawQueries source =
+      simd::raw_queries(reference::evaluated_kind(kind), queries.data(), queries.size());
   in_arena(options, [&] {
     Partials partials;
     std::vector<std::size_t> survivors;
-    if (filtered) survivors = filter_source(source, queries.size(), kernels.raw, options, partials);
+    if (filtered) survivors = filter_source(source, queries.size(), kernels.raw, options, separations, partials);
     reset(out, queries.size(), options);
-    solve_source(source, queries.size(), filtered ? &survivors : nullptr, options, 0, out, partials);
+    solve_source(source, queries.size(), filtered ? &survivors : nullptr, options, separations, 0, out,
+                 partials);
     combine(partials, out);
   });
   sort_hits(out);
+}
+
+void batch_ccd(Kind kind, std::span<const Query> queries, const Options& options, BatchResult& out) {
+  batch_ccd(kind, queries, {}, options, out);
 }
 
 BatchResult batch_ccd(Kind kind, std::span<const Query> queries, const Options& options) {
@@ -194,17 +246,41 @@ BatchResult batch_ccd(Kind kind, std::span<const Query> queries, const Options& 
   return batch;
 }
 
-void mesh_ccd(const MeshView& mesh, const Candidates& candidates, const Options& options,
-              BatchResult& out) {
+// Point-edge and point-point candidates as the edge-edge candidates they
+// are (Query's layout): the point a zero-length edge.
+std::vector<std::array<int, 4>> as_edge_edge(const Candidates& candidates, const Options& options) {
+  std::vector<std::array<int, 4>> pairs;
+  if (options.vertex_edge)
+    for (const auto& [vertex, e0, e1] : candidates.vertex_edge) pairs.push_back({vertex, vertex, e0, e1});
+  if (options.vertex_vertex)
+    for (const auto& [p, q] : candidates.vertex_vertex) pairs.push_back({p, p, q, q});
+  return pairs;
+}
+
+void mesh_ccd(const MeshView& mesh, const Candidates& candidates, const MinDistances& min_distances,
+              const Options& options, BatchResult& out) {
+  validate(options);
   const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
   const bool filtered = options.mode != Mode::cubic;  // the baseline runs unfiltered
+  const std::size_t vertex_face = options.vertex_face ? candidates.vertex_face.size() : 0;
+  const std::size_t edge_edge = options.edge_edge ? candidates.edge_edge.size() : 0;
+  const std::size_t vertex_edge = options.vertex_edge ? candidates.vertex_edge.size() : 0;
+  const std::size_t vertex_vertex = options.vertex_vertex ? candidates.vertex_vertex.size() : 0;
+  const Separations vertex_face_separations =
+      separations_of(min_distances.vertex_face, candidates.vertex_face.size(), "vertex-face", options);
+  const Separations edge_edge_separations =
+      separations_of(min_distances.edge_edge, candidates.edge_edge.size(), "edge-edge", options);
+  const Separations vertex_edge_separations =
+      separations_of(min_distances.vertex_edge, candidates.vertex_edge.size(), "vertex-edge", options);
+  const Separations vertex_vertex_separations =
+      separations_of(min_distances.vertex_vertex, candidates.vertex_vertex.size(), "vertex-vertex", options);
   in_arena(options, [&] {
     // The lane filters check the ids of every list they read on the way;
     // here the rest: shapes, faces, lists switched off, the baseline's lists.
     check_mesh(mesh, candidates, {.vertex_face = !filtered || !options.vertex_face,
-                                  .edge_edge = !filtered || !options.edge_edge});
-    const std::size_t vertex_face = options.vertex_face ? candidates.vertex_face.size() : 0;
-    const std::size_t edge_edge = options.edge_edge ? candidates.edge_edge.size() : 0;
+                                  .edge_edge = !filtered || !options.edge_edge,
+                                  .vertex_edge = !filtered || !options.vertex_edge,
+                                  .vertex_vertex = !filtered || !options.vertex_vertex});
     simd::PackedPositions packed(mesh.positions_t0.rows());
     tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, mesh.positions_t0.rows(), 1 << 14),
                       [&](const tbb::blocked_range<std::int64_t>& rows) {
@@ -213,28 +289,46 @@ void mesh_ccd(const MeshView& mesh, const Candidates& candidates, const Options&
                       });
     // Faces only where the vertex-face list is read.
     const simd::PackedFaces faces(mesh.faces.data(), vertex_face > 0 ? mesh.faces.rows() : 0);
+    const std::vector<std::array<int, 4>> point_pairs = as_edge_edge(candidates, options);
     const simd::MeshVertexFace vertex_face_source{packed.view(), faces.view(), candidates.vertex_face.data()};
     const simd::MeshEdgeEdge edge_edge_source{packed.view(), candidates.edge_edge.data()};
+    const simd::MeshEdgeEdge vertex_edge_source{packed.view(), point_pairs.data()};
+    const simd::MeshEdgeEdge vertex_vertex_source{packed.view(), point_pairs.data() + vertex_edge};
     Partials partials;
-    std::vector<std::size_t> vertex_face_survivors, edge_edge_survivors;
+    std::vector<std::size_t> survivors[4];
     if (filtered) {
       try {
-        vertex_face_survivors =
-            filter_source(vertex_face_source, vertex_face, kernels.vertex_face, options, partials);
-        edge_edge_survivors = filter_source(edge_edge_source, edge_edge, kernels.edge_edge, options, partials);
+        survivors[0] = filter_source(vertex_face_source, vertex_face, kernels.vertex_face, options,
+                                     vertex_face_separations, partials);
+        survivors[1] = filter_source(edge_edge_source, edge_edge, kernels.edge_edge, options,
+                                     edge_edge_separations, partials);
+        survivors[2] = filter_source(vertex_edge_source, vertex_edge, kernels.edge_edge, options,
+                                     vertex_edge_separations, partials);
+        survivors[3] = filter_source(vertex_vertex_source, vertex_vertex, kernels.edge_edge, options,
+                                     vertex_vertex_separations, partials);
       } catch (const simd::IndexOutOfRange&) {
         check_mesh(mesh, candidates);  // names the first bad id
         throw std::logic_error("mesh_ccd: a filter found an index out of range that check_mesh did not");
       }
     }
-    reset(out, vertex_face + edge_edge, options);
-    solve_source(vertex_face_source, vertex_face, filtered ? &vertex_face_survivors : nullptr, options, 0,
-                 out, partials);
-    solve_source(edge_edge_source, edge_edge, filtered ? &edge_edge_survivors : nullptr, options,
-                 vertex_face, out, partials);
+    reset(out, vertex_face + edge_edge + vertex_edge + vertex_vertex, options);
+    const auto solved = [&](int list) { return filtered ? &survivors[list] : nullptr; };
+    solve_source(vertex_face_source, vertex_face, solved(0), options, vertex_face_separations, 0, out,
+                 partials);
+    solve_source(edge_edge_source, edge_edge, solved(1), options, edge_edge_separations, vertex_face, out,
+                 partials);
+    solve_source(vertex_edge_source, vertex_edge, solved(2), options, vertex_edge_separations,
+                 vertex_face + edge_edge, out, partials);
+    solve_source(vertex_vertex_source, vertex_vertex, solved(3), options, vertex_vertex_separations,
+                 vertex_face + edge_edge + vertex_edge, out, partials);
     combine(partials, out);
   });
   sort_hits(out);
+}
+
+void mesh_ccd(const MeshView& mesh, const Candidates& candidates, const Options& options,
+              BatchResult& out) {
+  mesh_ccd(mesh, candidates, MinDistances{}, options, out);
 }
 
 BatchResult mesh_ccd(const MeshView& mesh, const Candidates& candidates, const Options& options) {

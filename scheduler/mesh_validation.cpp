@@ -54,10 +54,14 @@ bool all_in_range(const MeshView& mesh, const Candidates& candidates, CandidateL
     found |= any_outside(candidates.vertex_face, [n, m](const std::array<int, 2>& pair) {
       return outside(pair[0], n) | outside(pair[1], m);
     });
-  if (lists.edge_edge)
-    found |= any_outside(candidates.edge_edge, [n](const std::array<int, 4>& pair) {
-      return outside(pair[0], n) | outside(pair[1], n) | outside(pair[2], n) | outside(pair[3], n);
-    });
+  const auto any_vertex_outside = [n](const auto& ids) {
+    bool any = false;
+    for (const int id : ids) any |= outside(id, n);
+    return any;
+  };
+  if (lists.edge_edge) found |= any_outside(candidates.edge_edge, any_vertex_outside);
+  if (lists.vertex_edge) found |= any_outside(candidates.vertex_edge, any_vertex_outside);
+  if (lists.vertex_vertex) found |= any_outside(candidates.vertex_vertex, any_vertex_outside);
   return !found;
 }
 
@@ -94,6 +98,10 @@ void check_mesh(const MeshView& mesh, const Candidates& candidates, CandidateLis
   }
   for (std::size_t i = 0; i < candidates.edge_edge.size(); ++i)
     for (int id : candidates.edge_edge[i]) check_vertex(id, "edge-edge", i);
+  for (std::size_t i = 0; i < candidates.vertex_edge.size(); ++i)
+    for (int id : candidates.vertex_edge[i]) check_vertex(id, "vertex-edge", i);
+  for (std::size_t i = 0; i < candidates.vertex_vertex.size(); ++i)
+    for (int id : candidates.vertex_vertex[i]) check_vertex(id, "vertex-vertex", i);
 }
 
 }  // namespace batchccd

@@ -9,13 +9,15 @@ namespace batchccd {
 struct CandidateLists {
   bool vertex_face = true;
   bool edge_edge = true;
+  bool vertex_edge = true;
+  bool vertex_vertex = true;
 };
 
 // Throws std::invalid_argument naming the first bad item: matrices that are
 // not n x 3 / m x 3 (zero rows: any column count) with positions_t0 and
 // positions_t1 of equal row counts, or an index out of range in a face or in
 // one of `lists` (once something is wrong, the first bad item of all, in the
-// order faces, vertex-face, edge-edge). Runs in the caller's task arena.
+// order faces, vertex-face, edge-edge, vertex-edge, vertex-vertex). Runs in the caller's task arena.
 void check_mesh(const MeshView& mesh, const Candidates& candidates, CandidateLists lists = {});
 
 }  // namespace batchccd

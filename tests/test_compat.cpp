@@ -187,7 +187,7 @@ TEST(MeshEdges, MatchesTheVertexIdCall) {
   const batchccd::BatchResult by_edge_id =
       batchccd::mesh_ccd(mesh.view(), {vertex_face_pairs, edge_edge_pairs});
 
-  batchccd::Candidates by_vertex{vertex_face_pairs, {}};
+  batchccd::Candidates by_vertex{.vertex_face = vertex_face_pairs};
   for (const auto [a, b] : edge_edge_pairs)
     by_vertex.edge_edge.push_back(
         {mesh.edges(a, 0), mesh.edges(a, 1), mesh.edges(b, 0), mesh.edges(b, 1)});

@@ -1,11 +1,13 @@
 #include "batchccd/ccd.hpp"
 
 #include "reference/reference.hpp"
+#include "reference/scaled_query.hpp"
 
 namespace batchccd {
 
 QueryResult query_ccd(Kind kind, const Query& query, const Options& options) {
-  return reference::evaluate_query(kind, query, options).result;
+  validate(options);
+  return reference::evaluate_query(reference::evaluated_kind(kind), query, options).result;
 }
 
 QueryResult vertex_face_ccd(const Vec3& p_t0, const Vec3& a_t0, const Vec3& b_t0,
@@ -19,6 +21,17 @@ QueryResult edge_edge_ccd(const Vec3& ea0_t0, const Vec3& ea1_t0, const Vec3& eb
                           const Vec3& eb0_t1, const Vec3& eb1_t1, const Options& options) {
   return query_ccd(Kind::edge_edge,
                    {{ea0_t0, ea1_t0, eb0_t0, eb1_t0, ea0_t1, ea1_t1, eb0_t1, eb1_t1}}, options);
+}
+
+QueryResult vertex_edge_ccd(const Vec3& p_t0, const Vec3& e0_t0, const Vec3& e1_t0,
+                            const Vec3& p_t1, const Vec3& e0_t1, const Vec3& e1_t1,
+                            const Options& options) {
+  return query_ccd(Kind::vertex_edge, {{p_t0, p_t0, e0_t0, e1_t0, p_t1, p_t1, e0_t1, e1_t1}}, options);
+}
+
+QueryResult vertex_vertex_ccd(const Vec3& p_t0, const Vec3& q_t0, const Vec3& p_t1,
+                              const Vec3& q_t1, const Options& options) {
+  return query_ccd(Kind::vertex_vertex, {{p_t0, p_t0, q_t0, q_t0, p_t1, p_t1, q_t1, q_t1}}, options);
 }
 
 }  // namespace batchccd

@@ -6,7 +6,15 @@
 
 namespace batchccd {
 
-const char* to_string(Kind kind) { return kind == Kind::vertex_face ? "vf" : "ee"; }
+const char* to_string(Kind kind) {
+  switch (kind) {
+    case Kind::vertex_face: return "vf";
+    case Kind::edge_edge: return "ee";
+    case Kind::vertex_edge: return "ve";
+    case Kind::vertex_vertex: return "vv";
+  }
+  return "?";
+}
 
 const char* to_string(Mode mode) {
   switch (mode) {

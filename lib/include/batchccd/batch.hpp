@@ -46,7 +46,7 @@ struct Hit {
 
 struct BatchResult {
   // One per candidate, in input order (a mesh call: vertex-face candidates
-  // first, then edge-edge). Empty when Options::per_candidate_results is false.
+  // first, then edge-edge, vertex-edge and vertex-vertex). Empty when Options::per_candidate_results is false.
   std::vector<QueryResult> results;
   // The candidates that hit, in increasing candidate order, when
   // Options::hit_list is set (empty otherwise). Equal to the hits among
@@ -67,9 +67,10 @@ Isa resolve_isa(Isa requested);
 // build, the scalar reference path first.
 std::vector<Isa> available_isas();
 
-// Raw queries, all of one kind, evaluated in parallel (Options::threads).
+// Raw queries, all of one kind (Query's layout for that kind), evaluated in
+// parallel (Options::threads).
 // Per query, the promises of ccd.hpp. Throws std::invalid_argument when
-// options.isa is not available; a query with a NaN or infinite coordinate
+// options.isa is not available or the options fail validate(); a query with a NaN or infinite coordinate
 // only gets Status::invalid_input (hit, toi 0), the others are unaffected.
 BatchResult batch_ccd(Kind kind, std::span<const Query> queries,
                       const Options& options = {});
@@ -85,13 +86,28 @@ struct MeshView {
 
 // Broad-phase candidates over a mesh.
 struct Candidates {
-  std::vector<std::array<int, 2>> vertex_face;  // vertex id, face id
-  std::vector<std::array<int, 4>> edge_edge;    // a0, a1, b0, b1 vertex ids
+  std::vector<std::array<int, 2>> vertex_face;    // vertex id, face id
+  std::vector<std::array<int, 4>> edge_edge;      // a0, a1, b0, b1 vertex ids
+  std::vector<std::array<int, 3>> vertex_edge;    // vertex id, the edge's two vertex ids
+  std::vector<std::array<int, 2>> vertex_vertex;  // two vertex ids
+};
+
+// One minimum separation per candidate, replacing Options::min_distance
+// (ipc-toolkit takes a fraction of each pair's initial distance). Views of
+// the caller's buffers; each list's span is empty (Options::min_distance
+// for all of that list) or exactly as long as the list. Every value must be
+// >= 0 and finite.
+struct MinDistances {
+  std::span<const double> vertex_face;
+  std::span<const double> edge_edge;
+  std::span<const double> vertex_edge;
+  std::span<const double> vertex_vertex;
 };
 
 // Bad input (tests/test_bad_input.cpp). The whole call is refused, before
 // any result is written, with std::invalid_argument naming the first bad
-// item, when positions_t0 and positions_t1 differ in row count, a matrix
+// item, when the options fail validate(), positions_t0 and positions_t1
+// differ in row count, a matrix
 // with rows does not have 3 columns, or an index is out of range: a face's
 // vertex, or a candidate's vertex or face id (negative or too large), in
 // every candidate list, also one that Options switches off. An empty mesh
@@ -111,5 +127,15 @@ BatchResult mesh_ccd(const MeshView& mesh, const Candidates& candidates,
 void batch_ccd(Kind kind, std::span<const Query> queries, const Options& options, BatchResult& out);
 void mesh_ccd(const MeshView& mesh, const Candidates& candidates, const Options& options,
               BatchResult& out);
+
+// With one minimum separation per query or candidate (MinDistances). A
+// span of the wrong length, or a negative, NaN or infinite value, refuses
+// the whole call with std::invalid_argument naming the list, the index and
+// the value. Candidates with a separation > 0 are filtered by the scalar
+// path (the lane kernels test distance 0 only).
+void batch_ccd(Kind kind, std::span<const Query> queries, std::span<const double> min_distances,
+               const Options& options, BatchResult& out);
+void mesh_ccd(const MeshView& mesh, const Candidates& candidates, const MinDistances& min_distances,
+              const Options& options, BatchResult& out);
 
 }  // namespace batchccd

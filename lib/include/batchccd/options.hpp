@@ -5,12 +5,16 @@
 namespace batchccd {
 
 // How decisions are made (DESIGN.md §3). A contact is the closed primitives
-// touching (distance exactly 0) at some t in [0, 1]; QueryResult::toi is
-// then the reported time of impact. What each mode promises of both:
+// coming within Options::min_distance of each other (Euclidean distance;
+// touching when it is 0, the default) at some t in [0, Options::tmax];
+// QueryResult::toi is then the reported time of impact. What each mode
+// promises of both:
 enum class Mode {
   // Certified floating point: never a false negative on any finite input; a
   // false positive only when the primitives come within `tolerance` (relative
-  // to the query's size) of each other. The default.
+  // to the query's size) of each other, or with min_distance > 0 within
+  // min_distance + `tolerance` times the query's size, at some t in [0, tmax]
+  // -- or when they do so less than toi_tolerance after tmax. The default.
   // A query the floating-point search cannot settle within
   // `exact_stage_iterations` boxes (nearly parallel edges, nearly coplanar
   // motion) goes to exact mode's exact stage rather than being reported as
@@ -26,13 +30,15 @@ enum class Mode {
   // The same filter and solver in plain double arithmetic, without error
   // bounds: what most engines ship. May miss contacts.
   // TOI: usually as in conservative mode; no guarantee, it may lie after the
-  // first contact.
+  // first contact. With min_distance > 0 the same search as conservative mode
+  // without error bounds.
   fast,
   // The standard unfiltered cubic solver (roots of the coplanarity cubic in
   // double, then an inside test at each root): the seed paper's baseline.
   // May miss contacts.
   // TOI: the double estimate of the first root that passes the inside test;
-  // no guarantee.
+  // no guarantee. The cubic has no meaning with min_distance > 0: a call
+  // that asks for both throws std::invalid_argument.
   cubic,
   // Decisions equal to exact arithmetic on the inputs (doubles are dyadic
   // rationals): no false positive and no false negative on any finite input.
@@ -44,6 +50,14 @@ enum class Mode {
   // bit sizes of its polynomials).
   // TOI: never after the first contact, and less than 1e-12 (2^-40) of the
   // step before it. With need_toi = false, as there: some lower bound.
+  // With min_distance > 0 the contact condition is a distance, not a root:
+  // a hit is then proven by a certified witness (a time and a pair of points
+  // of the two primitives at most min_distance apart), a miss by certified
+  // exclusion of every time in [0, tmax]; a query neither settles within
+  // 2^-40 of its size (the primitives' closest approach lies within
+  // [min_distance, min_distance + 2^-40 size]) is reported as a hit, never
+  // missed, and counted in Counters::undecided. Contacts up to 2^-45 of the
+  // step after tmax count.
   exact,
 };
 
@@ -58,11 +72,23 @@ enum class Isa { automatic, scalar, sse4, avx2, avx512 };
 const char* to_string(Mode mode);
 const char* to_string(Isa isa);
 
-// Every knob of a call, with its default. Values are not validated; the
-// comments say what an out-of-range one does.
+// Every knob of a call, with its default. Every call checks min_distance,
+// tmax and mode (validate, below); the other values are not validated, and
+// the comments say what an out-of-range one does.
 
 struct Options {
   Mode mode = Mode::conservative;
+
+  // The separation that counts as a contact, absolute, in the caller's length
+  // units (ipc-toolkit's min_distance, Tight Inclusion's ms): the primitives
+  // collide when their Euclidean distance is <= min_distance at some t in
+  // [0, tmax]. >= 0 and finite. Batch calls can also take one per candidate
+  // (batch.hpp), which replaces this one.
+  double min_distance = 0;
+  // The end of the time window, in (0, 1]: a contact after tmax is not a
+  // hit (conservative and fast modes may count one less than toi_tolerance
+  // after it, exact mode one less than 2^-45 after it).
+  double tmax = 1;
 
   // false: only hit/no-hit is needed; the solver stops at the first contact
   // it finds, and a hit's toi is then only some lower bound (possibly 0).
@@ -72,6 +98,8 @@ struct Options {
   // no results and no counts).
   bool vertex_face = true;
   bool edge_edge = true;
+  bool vertex_edge = true;
+  bool vertex_vertex = true;
 
   // Batch calls: write one QueryResult per candidate (false: only the
   // earliest TOI and the counters). It costs a result's 24 bytes a candidate,
@@ -125,5 +153,10 @@ struct Options {
   // off unless asked for (the command-line tool asks).
   bool time_queries = false;
 };
+
+// Throws std::invalid_argument naming the field and its value when
+// min_distance is negative, NaN or infinite, tmax is not in (0, 1], or
+// mode is cubic with min_distance > 0. Every call does this first.
+void validate(const Options& options);
 
 }  // namespace batchccd

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <limits>
+#include <span>
 
 #include <Eigen/Core>
 
@@ -11,20 +12,36 @@ namespace batchccd {
 // are relative to each query's size.
 using Vec3 = Eigen::Vector3d;
 
-// The two elementary tests of triangle-mesh CCD (DESIGN.md §1).
-enum class Kind { vertex_face, edge_edge };
+// The elementary tests: the two of triangle-mesh CCD (DESIGN.md §1), and
+// point-edge and point-point for rods, particles and codimensional contact
+// (DESIGN.md §8; mostly useful with Options::min_distance > 0).
+enum class Kind { vertex_face, edge_edge, vertex_edge, vertex_vertex };
 
-// "vf" or "ee", the command-line tool's names. Never null.
+// "vf", "ee", "ve" or "vv", the command-line tool's names. Never null.
 const char* to_string(Kind kind);
 
-// One elementary query: eight points, in the order of the query files
-// (DESIGN.md §5):
-//   vertex_face: p_t0, a_t0, b_t0, c_t0, p_t1, a_t1, b_t1, c_t1
-//   edge_edge:   ea0_t0, ea1_t0, eb0_t0, eb1_t0, ea0_t1, ea1_t1, eb0_t1, eb1_t1
+// Points a query of this kind names at one time: 4, 4, 3, 2.
+int points_per_time(Kind kind);
+
+// One elementary query: eight points, t0 positions first, in the order of
+// the query files (DESIGN.md §5):
+//   vertex_face:   p_t0, a_t0, b_t0, c_t0, p_t1, a_t1, b_t1, c_t1
+//   edge_edge:     ea0_t0, ea1_t0, eb0_t0, eb1_t0, ea0_t1, ea1_t1, eb0_t1, eb1_t1
+// A point-edge or point-point query is the edge-edge query of the point as
+// a zero-length edge: the same test, so it is stored that way (make_query
+// below builds it from the points alone):
+//   vertex_edge:   p_t0, p_t0, e0_t0, e1_t0, p_t1, p_t1, e0_t1, e1_t1
+//   vertex_vertex: p_t0, p_t0, q_t0, q_t0, p_t1, p_t1, q_t1, q_t1
 // Every vertex moves linearly from its t0 to its t1 position over t in [0, 1].
 struct Query {
   std::array<Vec3, 8> points;
 };
+
+// The query of `kind` whose points at t0 are points_t0 and at t1 points_t1
+// (points_per_time(kind) of each, in the order above without repetitions:
+// vertex_edge p, e0, e1; vertex_vertex p, q). Throws std::invalid_argument
+// when a span has another size.
+Query make_query(Kind kind, std::span<const Vec3> points_t0, std::span<const Vec3> points_t1);
 
 // Bad input, per query, in every mode and entry point (tests/test_bad_input.cpp):
 // - A NaN or infinite coordinate among the eight points: not evaluated;
@@ -46,11 +63,11 @@ enum class Status {
 
 // The answer to one query.
 struct QueryResult {
-  // The primitives touch at some t in [0, 1] (as far as Options::mode
-  // promises).
+  // The primitives come within Options::min_distance of each other (touch,
+  // by default) at some t in [0, Options::tmax], as far as Options::mode
+  // promises.
   bool hit = false;
-  // Time of impact in [0, 1], +inf when there is none or when it was not
-  // asked for. Conservative and exact modes never report it later than the
+  // Time of impact in [0, tmax], +inf when there is none. Conservative and exact modes never report it later than the
   // first contact (a lower bound); fast and cubic promise nothing of it
   // (Mode in options.hpp).
   double toi = std::numeric_limits<double>::infinity();

@@ -1,5 +1,7 @@
 #include "exact/exact_solver.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <utility>
 #include <vector>
@@ -47,9 +49,41 @@ class SignsAtRoots {
   std::map<const Polynomial*, Polynomial> common_factors_;  // polynomials outlive this
 };
 
+// x = numerator / 2^exponent exactly, for a finite x > 0.
+IsolatedRoot as_dyadic(double x) {
+  int binary_exponent = 0;
+  const double mantissa = std::frexp(x, &binary_exponent);  // x = mantissa 2^e, mantissa in [1/2, 1)
+  IsolatedRoot dyadic{Integer(), static_cast<unsigned long>(53 - binary_exponent), true, 0};
+  mpz_set_d(dyadic.numerator.get(), std::ldexp(mantissa, 53));
+  return dyadic;
+}
+
+// numerator * 2^(exponent - from): the same dyadic on a finer grid.
+Integer on_grid(const Integer& numerator, unsigned long from, unsigned long exponent) {
+  return shifted_left(numerator, exponent - from);
+}
+
+// Whether the root lies after `limit` (exact, from as_dyadic). A root's
+// open interval is halved until the limit lies outside it: once the
+// interval is no wider than the limit's grid, the limit is at most one of
+// its ends, and halving is bounded by that grid's bits.
+bool lies_after(IsolatedRoot& root, const IsolatedRoot& limit, const Polynomial& critical) {
+  while (true) {
+    const unsigned long grid = std::max(root.exponent, limit.exponent);
+    const Integer low = on_grid(root.numerator, root.exponent, grid);
+    const Integer bound = on_grid(limit.numerator, limit.exponent, grid);
+    const int low_versus_limit = mpz_cmp(low.get(), bound.get());
+    if (root.exact) return low_versus_limit > 0;
+    if (low_versus_limit >= 0) return true;  // the root is above its interval's low end
+    const Integer high = on_grid(root.numerator + Integer(1), root.exponent, grid);
+    if (mpz_cmp(high.get(), bound.get()) <= 0) return false;
+    halve(root, critical);
+  }
+}
+
 }  // namespace
 
-ExactOutcome solve_exactly(Kind kind, const Query& query, bool need_toi) {
+ExactOutcome solve_exactly(Kind kind, const Query& query, bool need_toi, double tmax) {
   std::vector<TriangleConditions> triangles;
   for (const MovingTriangle& triangle : difference_triangles(kind, exact_relative_motion(kind, query)))
     triangles.emplace_back(triangle);
@@ -64,7 +98,9 @@ ExactOutcome solve_exactly(Kind kind, const Query& query, bool need_toi) {
   candidates.push_back(exact_time(1));
 
   SignsAtRoots signs(critical);
+  const IsolatedRoot limit = as_dyadic(tmax);
   for (IsolatedRoot& time : candidates) {
+    if (lies_after(time, limit, critical)) break;
     const SignAtTime sign = [&](const Polynomial& p) { return signs(p, time); };
     bool contact = false;
     for (const TriangleConditions& triangle : triangles) {

@@ -25,6 +25,8 @@ struct ExactOutcome {
 // first contact. need_toi = false stops refining once the decision is known.
 // Finite input only. Work is bounded by the degrees and bit sizes of the
 // polynomials (see root_isolation.hpp).
-ExactOutcome solve_exactly(Kind kind, const Query& query, bool need_toi);
+// Contacts after tmax (in (0, 1]) do not count: the candidates after it are
+// compared with it exactly.
+ExactOutcome solve_exactly(Kind kind, const Query& query, bool need_toi, double tmax = 1.0);
 
 }  // namespace batchccd::exact

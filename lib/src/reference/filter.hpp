@@ -11,12 +11,15 @@ struct FilterSettings {
   bool sign = true;        // the Bernstein sign test on the coplanarity cubic
   bool subdivide = true;   // its V = 2 step (false: DNF-style, the four signs only)
   bool separation = true;  // distance at t = 0 against the largest displacement
+  // Options::min_distance (or a candidate's own): with > 0 the sign filter
+  // tests the distance to the plane or line pair instead (DESIGN.md §8).
+  double min_distance = 0;
 };
 
 // The filters a call's options ask for (mode cubic runs none: callers skip them).
 inline FilterSettings filter_settings(const Options& options) {
   return {options.mode != Mode::fast, options.sign_filter, options.sign_filter_subdivision,
-          options.separation_filter};
+          options.separation_filter, options.min_distance};
 }
 
 // What each filter said of one query. The sign filter runs first; the
@@ -33,7 +36,8 @@ struct FilterVerdict {
 // product of three from overflow and from underflow that matters (the
 // direct frame, error_bounds.hpp), else in the scaled frame; the separation
 // filter always in the scaled frame. The lane kernels decide the same, lane
-// for lane.
+// for lane (without a minimum separation: with one, both filters run in the
+// scaled frame, here only).
 FilterVerdict run_filters(Kind kind, const Query& query, const FilterSettings& settings);
 
 // The sign filter alone, in the scaled frame.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "reference/bernstein.hpp"
@@ -58,7 +59,9 @@ std::array<double, 3> weights(Kind kind, double u, double v) {
   return {u, v - 1, -v};
 }
 
-enum class Search { excluded, found, unresolved, out_of_iterations };
+// found: within tolerance; witnessed (minimum separation only): a point of
+// contact certainly within min_distance.
+enum class Search { excluded, found, witnessed, unresolved, out_of_iterations };
 
 // The positions x2..x4 (relative to x1) and their magnitudes at both ends
 // of a time interval.
@@ -81,6 +84,8 @@ class InclusionSolver {
       cubic_error_ = interpolated_coefficient_error(query.absolute_error);
       function_error_ = collision_function_error(query.absolute_error);
     }
+    // A rounded-up subnormal separation cannot witness a contact.
+    witness_distance_ = settings.min_distance >= 0x1p-1022 ? settings.min_distance : 0;
   }
 
   // Outer search over time, earliest interval first, so the first interval
@@ -92,7 +97,12 @@ class InclusionSolver {
       std::pop_heap(heap.begin(), heap.end(), starts_later);
       Interval time = heap.back();
       heap.pop_back();
+      if (time.low > settings_.tmax) break;  // the earliest left: nothing later counts
       const Endpoints ends = endpoints(time);
+      if (settings_.min_distance > 0) {
+        if (const std::optional<SolverOutcome> outcome = search_within_distance(time, ends)) return *outcome;
+        continue;
+      }
       const CubicSigns cubic = cubic_signs(ends);
       if (cubic.root_free) continue;
       const bool settled = time.width() <= settings_.toi_tolerance || !settings_.need_toi;
@@ -126,17 +136,41 @@ class InclusionSolver {
         // the cubic alone narrows it to its first root, much cheaper than
         // the search below, which goes on only when the signs get too close
         // to call first.
-        if (settings_.need_toi) time = narrow_to_first_root(time, settings_.toi_tolerance);
-        if (time.width() <= settings_.toi_tolerance || !settings_.need_toi) return certain_contact(time);
+        // Located also when it may lie after tmax, to tell whether it counts.
+        const bool locate = settings_.need_toi || time.high > settings_.tmax;
+        if (locate) time = narrow_to_first_root(time, settings_.toi_tolerance);
+        if (time.width() <= settings_.toi_tolerance || !locate) return certain_contact(time);
       }
       if (time.width() <= kSmallestWidth) return {true, time.low, false, false};  // nothing left to refine
-      push(heap, Interval{time.low, time.middle()});
-      push(heap, Interval{time.middle(), time.high});
+      split(time);
     }
     return {false, 0, false, settings_.certified};  // every time excluded
   }
 
  private:
+  static void split(const Interval& time) {
+    push(time_heap(), Interval{time.low, time.middle()});
+    push(time_heap(), Interval{time.middle(), time.high});
+  }
+
+  // One time interval of the search with a minimum separation: its outcome,
+  // or nothing when it was excluded or split. A contact found in an interval
+  // not yet toi_tolerance wide splits it: the first contact may lie earlier.
+  std::optional<SolverOutcome> search_within_distance(const Interval& time, const Endpoints& ends) {
+    const bool settled = time.width() <= settings_.toi_tolerance || !settings_.need_toi;
+    const std::int64_t budget = time.width() > kWideInterval ? kWideBudget : settings_.max_iterations;
+    const Search search = search_parameters(ends, budget);
+    if (search == Search::excluded) return std::nullopt;
+    if (search == Search::out_of_iterations) return SolverOutcome{true, time.low, true, false};
+    if (search == Search::witnessed && settled)  // certain when the witness counts (by tmax)
+      return SolverOutcome{true, time.low, false, settings_.certified && time.middle() <= settings_.tmax};
+    if (search == Search::found && settled)
+      return SolverOutcome{.hit = true, .toi = time.low, .within_tolerance = true};
+    if (time.width() <= kSmallestWidth) return SolverOutcome{true, time.low, false, false};
+    split(time);
+    return std::nullopt;
+  }
+
   // The first contact lies in `time` at the cubic's first root there (a
   // certain root, a certain inside test over all of it, every earlier time
   // excluded): refined to refined_toi_width when asked.
@@ -169,6 +203,8 @@ class InclusionSolver {
   struct Image {
     bool excluded = false;
     double width = 0;  // widest component range, error included
+    // With a minimum separation: an upper bound of |F| at the box's centre.
+    double centre_distance = INFINITY;
     // How much component `axis` of F changes along dimension d (0 t, 1 u, 2 v).
     double influence[3][3] = {};
   };
@@ -254,7 +290,15 @@ class InclusionSolver {
       if (kind_ == Kind::vertex_face && box.u.low + box.v.low > 1) continue;  // outside the triangle
       const Image image = evaluate(ends, box);
       if (image.excluded) continue;
-      if (image.width <= settings_.tolerance) return Search::found;
+      if (settings_.min_distance > 0) {
+        // The centre names a pair of points of the primitives (VF: inside the triangle).
+        const bool on_primitives = kind_ == Kind::edge_edge || box.u.middle() + box.v.middle() <= 1;
+        if (on_primitives && image.centre_distance <= witness_distance_) return Search::witnessed;
+        if (on_primitives && image.centre_distance <= settings_.min_distance + settings_.tolerance)
+          return Search::found;
+      } else if (image.width <= settings_.tolerance) {
+        return Search::found;
+      }
       const int dimension = dimension_to_split(box, image);
       if (dimension < 0) return Search::unresolved;
       ParameterBox low = box, high = box;
@@ -290,7 +334,7 @@ class InclusionSolver {
         low = std::min(low, x);
         high = std::max(high, x);
       }
-      if (low > error || high < -error) {
+      if (low > error + settings_.min_distance || high < -(error + settings_.min_distance)) {
         image.excluded = true;
         return image;
       }
@@ -303,7 +347,7 @@ class InclusionSolver {
           influence[2] = std::max(influence[2], std::fabs(at(a, b, 1) - at(a, b, 0)));
         }
     }
-    image.excluded = separated_along_center(ends, value, error);
+    image.excluded = separated_along_center(ends, value, error, image);
     return image;
   }
 
@@ -314,7 +358,10 @@ class InclusionSolver {
   // edges) the axis tests need boxes as small as the distance to exclude a
   // strip along it; along the normal part a box is excluded whatever its
   // size in (u, v).
-  bool separated_along_center(const Endpoints& ends, const V3 (&value)[2][2][2], double error) const {
+  // With a minimum separation s the image must lie farther than s along the
+  // direction, and the centre's distance bound is kept in `image`.
+  bool separated_along_center(const Endpoints& ends, const V3 (&value)[2][2][2], double error,
+                              Image& image) const {
     V3 center{0, 0, 0};
     double largest = 0;
     for (int corner = 0; corner < 8; ++corner) {
@@ -322,16 +369,30 @@ class InclusionSolver {
       center = {center.x + x.x, center.y + x.y, center.z + x.z};
       largest = std::max({largest, std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)});
     }
+    const double separation = settings_.min_distance;
+    if (separation > 0) image.centre_distance = centre_distance_bound(center, largest, error);
     // Any direction will do: the bound covers the corners' own error and the
-    // rounding of the dot products (three terms).
+    // rounding of the dot products (three terms), and the separation times
+    // the direction's length (rounded up by the factor).
     auto separates = [&](const V3& direction) {
       const double weight = std::fabs(direction.x) + std::fabs(direction.y) + std::fabs(direction.z);
-      const double bound = weight * (error + 4 * kUnitRoundoff * largest) + kUnderflowFloor;
+      const double length = separation > 0 ? std::sqrt(dot(direction, direction)) * (1 + 4 * kUnitRoundoff) : 0;
+      const double bound = weight * (error + 4 * kUnitRoundoff * largest) + kUnderflowFloor + separation * length;
       for (int corner = 0; corner < 8; ++corner)
         if (!(dot(direction, value[corner >> 2][(corner >> 1) & 1][corner & 1]) > bound)) return false;
       return true;
     };
     return separates(center) || separates(normal_part(center, parameter_directions(ends)));
+  }
+
+  // An upper bound of |F| at the box's centre, which (F being affine in each
+  // of t, u and v) is the mean of the corners: each corner within `error`,
+  // the sum of eight rounded 7 times at most 8 largest each.
+  static double centre_distance_bound(const V3& corner_sum, double largest, double error) {
+    const double margin = error + 8 * kUnitRoundoff * largest + kUnderflowFloor;
+    const V3 bound{std::fabs(corner_sum.x) * 0.125 + margin, std::fabs(corner_sum.y) * 0.125 + margin,
+                   std::fabs(corner_sum.z) * 0.125 + margin};
+    return std::sqrt(dot(bound, bound)) * (1 + 4 * kUnitRoundoff);
   }
 
   // dF/du and dF/dv at the interval's middle time (F is linear in each).
@@ -387,13 +448,17 @@ class InclusionSolver {
   V3 magnitude_[3][2];
   ErrorModel cubic_error_;
   ErrorModel function_error_;
+  double witness_distance_ = 0;
   std::int64_t iterations_ = 0;
 };
 
 }  // namespace
 
 SolverOutcome solve_inclusion(Kind kind, const ScaledQuery& query, const SolverSettings& settings) {
-  return InclusionSolver(kind, query, settings).run();
+  const SolverOutcome outcome = InclusionSolver(kind, query, settings).run();
+  // Every time before a hit's toi is excluded: past tmax, nothing counts.
+  if (outcome.hit && outcome.toi > settings.tmax) return {false, 0, false, settings.certified};
+  return outcome;
 }
 
 }  // namespace batchccd::reference

@@ -16,6 +16,11 @@ struct SolverSettings {
   // test is found, locate the first contact on the cubic alone down to this
   // width (0: stop at toi_tolerance). Exact mode asks for 2^-40.
   double refined_toi_width = 0;
+  // The separation that counts as a contact, in the scaled frame (>= 0;
+  // +inf allowed). With > 0 the search looks for the distance, not a root.
+  double min_distance = 0;
+  // Intervals starting after tmax hold no contact that counts.
+  double tmax = 1;
 };
 
 struct SolverOutcome {
@@ -34,7 +39,7 @@ struct SolverOutcome {
   double toi_upper = 1;
   // A hit because the primitives certainly come within `tolerance` of each
   // other (not proven to touch): the one uncertain hit conservative mode may
-  // report as it is.
+  // report as it is. With min_distance > 0: within min_distance + tolerance.
   bool within_tolerance = false;
 };
 
@@ -49,6 +54,11 @@ struct SolverOutcome {
 // excluded and whose image is within `tolerance` of zero gives the TOI.
 // Degenerate triangles, parallel or zero-length edges and coplanar motion
 // need no special case: F stays well defined.
+// With min_distance > 0 a box is excluded when its image is certainly
+// farther than min_distance from zero along some direction (the image lies
+// in the convex hull of the corners), and a contact is certain where F at
+// a box's centre is certainly within min_distance (a witness); the cubic
+// plays no part. Intervals after tmax are never searched.
 SolverOutcome solve_inclusion(Kind kind, const ScaledQuery& query, const SolverSettings& settings);
 
 }  // namespace batchccd::reference

@@ -28,11 +28,37 @@ SolverSettings solver_settings(const Options& options) {
                                 ? std::min(options.max_iterations, options.exact_stage_iterations)
                                 : options.max_iterations;
   if (options.mode == Mode::exact) settings.refined_toi_width = kExactToiWidth;
+  settings.tmax = options.tmax;
   return settings;
 }
 
+// Any two points of a scaled query lie less than 7 apart (every coordinate
+// of x2..x4 below 2 in magnitude, x1 at the origin).
+constexpr double kLargerThanEveryDistance = 8;
+
+// A query with a minimum separation (DESIGN.md §8): no cubic and no exact
+// stage; the search settles it or reports a hit it could not rule out.
+void evaluate_within_distance(const ScaledQuery& scaled, Kind kind, const Options& options,
+                              Evaluation& evaluation) {
+  const double separation = to_scaled_length(scaled, options.min_distance);
+  if (separation >= kLargerThanEveryDistance) {
+    evaluation.result = {true, 0.0, Status::ok};
+    return;
+  }
+  SolverSettings settings = solver_settings(options);
+  settings.min_distance = separation;
+  const bool exact = options.mode == Mode::exact;
+  if (exact) {  // the band it may report: 2^-40 of the query's size
+    settings.tolerance = kExactToiWidth;
+    settings.max_iterations = options.max_iterations;
+  }
+  const SolverOutcome outcome = solve_inclusion(kind, scaled, settings);
+  evaluation.undecided = outcome.undecided || (exact && outcome.hit && !outcome.certain);
+  if (outcome.hit) evaluation.result = {true, outcome.toi, Status::ok};
+}
+
 void settle_exactly(Kind kind, const Query& query, const Options& options, Evaluation& evaluation) {
-  const exact::ExactOutcome outcome = exact::solve_exactly(kind, query, options.need_toi);
+  const exact::ExactOutcome outcome = exact::solve_exactly(kind, query, options.need_toi, options.tmax);
   evaluation.exact_stage = ExactStage::decision;
   evaluation.undecided = outcome.bound_reached;
   evaluation.result = outcome.hit ? QueryResult{true, outcome.toi, Status::ok} : QueryResult{};
@@ -43,6 +69,7 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, bool 
   if (options.mode == Mode::cubic) {  // the baseline as it is, without the scaled frame
     evaluation.result = all_finite(query) ? solve_cubic(kind, query)
                                           : QueryResult{true, 0.0, Status::invalid_input};
+    if (evaluation.result.toi > options.tmax) evaluation.result = {};
     return evaluation;
   }
   if (!filtered && run_filters(kind, query, filter_settings(options)).culled()) {
@@ -55,6 +82,12 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, bool 
     return evaluation;
   }
   const bool exact = options.mode == Mode::exact;
+  if (options.min_distance > 0) {
+    // Coincident points are within any separation: a hit at 0.
+    if (scaled.coincident) evaluation.result = {true, 0.0, Status::ok};
+    else evaluate_within_distance(scaled, kind, options, evaluation);
+    return evaluation;
+  }
   if (scaled.coincident) {  // all four points are one point throughout
     // Scaling may have flushed tiny differences to zero: only exact
     // arithmetic can tell those from a true coincidence.
@@ -65,7 +98,10 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, bool 
     }
     return evaluation;
   }
-  const SolverOutcome outcome = solve_inclusion(kind, scaled, solver_settings(options));
+  SolverOutcome outcome = solve_inclusion(kind, scaled, solver_settings(options));
+  // A certain contact whose interval straddles tmax may come after it:
+  // not certain of what counts.
+  if (outcome.certain && outcome.hit && outcome.toi_upper > options.tmax) outcome.certain = false;
   // Exact mode: every uncertain decision. Conservative mode: those but a
   // contact within tolerance, which its promise allows; the others (out of
   // iterations, or undecidable at the smallest boxes) would be guesses.

@@ -24,9 +24,17 @@ struct ScaledQuery {
   double absolute_error = 0;
   bool finite = true;      // false: some input coordinate is NaN or infinite
   bool coincident = false; // all four points coincide at t0 and t1
+  // Input lengths times 2^length_exponent are lengths in this frame.
+  int length_exponent = 0;
 };
 
 ScaledQuery scale_query(Kind kind, const Query& query);
+
+// A length of the input's units (Options::min_distance) in the scaled
+// frame of `query`, rounded up (exact unless it falls below 2^-1022;
+// +inf when it exceeds the double range, as it then exceeds every distance
+// in the frame).
+double to_scaled_length(const ScaledQuery& query, double length);
 
 // Every coordinate finite (no NaN, no infinity).
 bool all_finite(const Query& query);
@@ -34,6 +42,12 @@ bool all_finite(const Query& query);
 // Inputs at least this large are quartered before the differences are taken
 // (their differences could overflow); shared with the lane kernels.
 inline constexpr double kHugeInput = 0x1p1022;
+
+// The kind a query is evaluated as: point-edge and point-point queries are
+// edge-edge queries with zero-length edges (Query's layout).
+constexpr Kind evaluated_kind(Kind kind) {
+  return kind == Kind::vertex_face ? Kind::vertex_face : Kind::edge_edge;
+}
 
 // Index of DESIGN.md's x_k (k = 1..4) among Query::points at t0 (add 4 for t1).
 // Always inlined: the lane kernels, compiled with other instruction sets,

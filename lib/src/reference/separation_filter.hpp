@@ -184,15 +184,20 @@ T distance2_at(Kind kind, const Vector3<T> (&relative)[3][2], int end, T error_r
 // d0 <= t m and d1 <= (1 - t) m, so d0 + d1 > m rules it out; squared,
 // d0^2 + d1^2 + 2 sqrt(d0^2 d1^2) > m^2.
 template <class T>
-auto separation_filter_culls(Kind kind, const Vector3<T> (&relative)[3][2], T error_relative,
-                             T floor) {
-  using std::sqrt;
+T largest_displacement2(Kind kind, const Vector3<T> (&relative)[3][2], T error_relative, T floor) {
   Vector3<T> moved[3], moved_magnitude[3];
   for (int i = 0; i < 3; ++i) {
     moved[i] = relative[i][1] - relative[i][0];
     moved_magnitude[i] = absolute(relative[i][1]) + absolute(relative[i][0]);
   }
-  const T displacement2 = largest_displacement2(kind, moved, moved_magnitude, error_relative, floor);
+  return largest_displacement2(kind, moved, moved_magnitude, error_relative, floor);
+}
+
+template <class T>
+auto separation_filter_culls(Kind kind, const Vector3<T> (&relative)[3][2], T error_relative,
+                             T floor) {
+  using std::sqrt;
+  const T displacement2 = largest_displacement2(kind, relative, error_relative, floor);
   const T start2 = distance2_at(kind, relative, 0, error_relative, floor);
   // d0 > m alone rules a contact out, and sum2 below is never smaller than
   // this bound of d0^2 (rounding is monotonic): most groups of lanes stop
@@ -204,6 +209,21 @@ auto separation_filter_culls(Kind kind, const Vector3<T> (&relative)[3][2], T er
   // most u, and the shrink factor takes 8 u off.
   const T sum2 = (start2 + end2 + T(2) * sqrt(start2 * end2)) * T(SeparationErrors::shrink);
   return sum2 > displacement2;
+}
+
+// The filter with a minimum separation s > 0 (DESIGN.md §8), in the same
+// frame as `relative`: a contact at t needs d0 <= t m + s and
+// d1 <= (1 - t) m + s, so d0 + d1 > m + 2 s rules it out. The lengths are
+// taken from their certified squares with a margin of 8 u for each root,
+// sum and product. Scalar: the lane kernels run without a separation.
+inline bool separation_filter_culls_within(Kind kind, const Vector3<double> (&relative)[3][2],
+                                           double error_relative, double floor, double separation) {
+  constexpr double shrink = SeparationErrors::shrink, grow = SeparationErrors::grow;
+  const double motion = std::sqrt(largest_displacement2(kind, relative, error_relative, floor)) * grow;
+  const double start = std::sqrt(distance2_at(kind, relative, 0, error_relative, floor)) * shrink;
+  if (start * shrink > (motion + separation) * grow) return true;
+  const double end = std::sqrt(distance2_at(kind, relative, 1, error_relative, floor)) * shrink;
+  return (start + end) * shrink > (motion + 2 * separation) * grow;
 }
 
 }  // namespace batchccd::reference

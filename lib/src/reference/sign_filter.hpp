@@ -2,6 +2,7 @@
 
 #include "reference/bernstein.hpp"
 #include "reference/error_bounds.hpp"
+#include "reference/scaled_query.hpp"
 
 // The algebraic non-penetration filter (DESIGN.md §2): a certified sign test
 // on the Bernstein coefficients, branch-free so it runs unchanged in SIMD
@@ -76,5 +77,17 @@ auto sign_filter_culls(const Vector3<T> (&relative)[3][2], const T (&largest)[3]
   if (!subdivide || all_of(whole)) return whole;
   return whole | test.halves();
 }
+
+// The sign test with a minimum separation s > 0 (DESIGN.md §8), where the
+// cubic's signs alone prove nothing: primitives can come within s without
+// ever being coplanar. The distance between them is at least the distance
+// |d(t)| / |n(t)| to the triangle's plane (VF, n = x21 x x31) or between the
+// edges' lines (EE, n = x21 x x43). Where d's Bernstein coefficients share
+// a sign, |d(t)| is at least the smallest of them; |n(t)| is at most the
+// largest of the quadratic n's three Bernstein control points; so
+// min |b_k| > s max |n_j| rules out a contact on [0, 1]. (Where n vanishes
+// so does d, and nothing is culled.) Certified like the cubic, in the scaled
+// frame: scalar only.
+bool plane_distance_culls(Kind kind, const ScaledQuery& query, double separation, bool certified);
 
 }  // namespace batchccd::reference
