@@ -86,10 +86,10 @@ struct MeshView {
 
 // Broad-phase candidates over a mesh.
 struct Candidates {
-  std::vector<std::array<int, 2>> vertex_face;    // vertex id, face id
-  std::vector<std::array<int, 4>> edge_edge;      // a0, a1, b0, b1 vertex ids
-  std::vector<std::array<int, 3>> vertex_edge;    // vertex id, the edge's two vertex ids
-  std::vector<std::array<int, 2>> vertex_vertex;  // two vertex ids
+  std::vector<std::array<int, 2>> vertex_face{};    // vertex id, face id
+  std::vector<std::array<int, 4>> edge_edge{};      // a0, a1, b0, b1 vertex ids
+  std::vector<std::array<int, 3>> vertex_edge{};    // vertex id, the edge's two vertex ids
+  std::vector<std::array<int, 2>> vertex_vertex{};  // two vertex ids
 };
 
 // One minimum separation per candidate, replacing Options::min_distance
@@ -98,10 +98,10 @@ struct Candidates {
 // for all of that list) or exactly as long as the list. Every value must be
 // >= 0 and finite.
 struct MinDistances {
-  std::span<const double> vertex_face;
-  std::span<const double> edge_edge;
-  std::span<const double> vertex_edge;
-  std::span<const double> vertex_vertex;
+  std::span<const double> vertex_face{};
+  std::span<const double> edge_edge{};
+  std::span<const double> vertex_edge{};
+  std::span<const double> vertex_vertex{};
 };
 
 // Bad input (tests/test_bad_input.cpp). The whole call is refused, before

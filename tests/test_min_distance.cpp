@@ -1,0 +1,399 @@
+// Minimum separation, tmax and the point kinds (DESIGN.md §8): hand-made
+// cases at and around the separation, an independent exact reference
+// (tests/exact_distance.hpp), properties, batches against single queries,
+// bad options, and the labelled data of ../shared/data/min-distance.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "batchccd/batch.hpp"
+#include "batchccd/ccd.hpp"
+#include "batchccd/io.hpp"
+#include "exact_distance.hpp"
+
+namespace batchccd {
+namespace {
+
+using testing::Rational;
+using testing::squared_distance_at;
+
+const std::filesystem::path kData = BATCHCCD_SHARED_DATA;
+constexpr Mode kCertified[] = {Mode::conservative, Mode::exact};
+
+Options with(Mode mode, double min_distance, double tmax = 1.0) {
+  Options options;
+  options.mode = mode;
+  options.min_distance = min_distance;
+  options.tmax = tmax;
+  return options;
+}
+
+// A vertex moving straight down (-z) onto the unit right triangle in z = 0,
+// above the point (0.25, 0.25): at height `low` at t = 1/2, symmetric in time.
+Query vertex_dipping_to(double low) {
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  const double high = low + 1;  // at t = 0 and t = 1 (it goes down, then up: two steps joined)
+  return {{Vec3(0.25, 0.25, high), a, b, c, Vec3(0.25, 0.25, low), a, b, c}};
+}
+
+TEST(MinDistance, VertexFaceAtAndAroundTheSeparation) {
+  const double separation = 0.01;
+  for (const Mode mode : kCertified) {
+    SCOPED_TRACE(to_string(mode));
+    const QueryResult touching = query_ccd(Kind::vertex_face, vertex_dipping_to(separation), with(mode, separation));
+    EXPECT_TRUE(touching.hit);
+    EXPECT_LE(touching.toi, 1.0);
+    EXPECT_GE(touching.toi, 1.0 - 1e-6);  // the first time within the separation is t = 1
+    EXPECT_TRUE(query_ccd(Kind::vertex_face, vertex_dipping_to(separation * (1 - 1e-6)), with(mode, separation)).hit);
+    EXPECT_FALSE(query_ccd(Kind::vertex_face, vertex_dipping_to(separation * (1 + 1e-6)), with(mode, separation)).hit);
+  }
+  // Exact mode's band is 2^-40 of the query's size: a hair of 1e-10 outside is a miss.
+  EXPECT_FALSE(query_ccd(Kind::vertex_face, vertex_dipping_to(separation + 1e-10), with(Mode::exact, separation)).hit);
+}
+
+TEST(MinDistance, ContactBeforeCrossingIsFoundEarlier) {
+  // Falling through the triangle at t = 1/2 from height 1: within 0.1 from t = 0.45.
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  const Query falling{{Vec3(0.2, 0.2, 1), a, b, c, Vec3(0.2, 0.2, -1), a, b, c}};
+  for (const Mode mode : kCertified) {
+    const QueryResult result = query_ccd(Kind::vertex_face, falling, with(mode, 0.1));
+    ASSERT_TRUE(result.hit);
+    EXPECT_LE(result.toi, 0.45);
+    EXPECT_GE(result.toi, 0.45 - 1e-6);
+  }
+}
+
+TEST(MinDistance, ParallelEdgesAtTheSeparation) {
+  // Two parallel edges exactly 0.5 apart, sliding along each other.
+  const Query query{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 0.5, 0), Vec3(1, 0.5, 0), Vec3(0, 0, 0),
+                     Vec3(1, 0, 0), Vec3(0.5, 0.5, 0), Vec3(1.5, 0.5, 0)}};
+  for (const Mode mode : kCertified) {
+    SCOPED_TRACE(to_string(mode));
+    const QueryResult at = query_ccd(Kind::edge_edge, query, with(mode, 0.5));
+    EXPECT_TRUE(at.hit);
+    EXPECT_EQ(at.toi, 0.0);
+    EXPECT_FALSE(query_ccd(Kind::edge_edge, query, with(mode, 0.5 * (1 - 1e-6))).hit);
+  }
+}
+
+TEST(MinDistance, VertexSlidingAlongTheShell) {
+  // A vertex gliding over the triangle at height h: a contact at t = 0 when h <= s.
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  const auto gliding = [&](double h) {
+    return Query{{Vec3(0.1, 0.1, h), a, b, c, Vec3(0.6, 0.2, h), a, b, c}};
+  };
+  for (const Mode mode : kCertified) {
+    EXPECT_EQ(query_ccd(Kind::vertex_face, gliding(0.125), with(mode, 0.125)).toi, 0.0);
+    EXPECT_FALSE(query_ccd(Kind::vertex_face, gliding(0.125 * (1 + 1e-6)), with(mode, 0.125)).hit);
+  }
+}
+
+TEST(MinDistance, PointKindsAndDegeneratePrimitives) {
+  const Vec3 origin(0, 0, 0);
+  for (const Mode mode : kCertified) {
+    SCOPED_TRACE(to_string(mode));
+    // A point passing 0.3 from a static edge's middle (closest at t = 1/2).
+    const QueryResult near = vertex_edge_ccd(Vec3(0.5, 0.3, -1), Vec3(0, 0, 0), Vec3(1, 0, 0),
+                                             Vec3(0.5, 0.3, 1), Vec3(0, 0, 0), Vec3(1, 0, 0), with(mode, 0.3));
+    EXPECT_TRUE(near.hit);
+    EXPECT_NEAR(near.toi, 0.5, 1e-6);
+    EXPECT_FALSE(vertex_edge_ccd(Vec3(0.5, 0.3, -1), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 0.3, 1),
+                                 Vec3(0, 0, 0), Vec3(1, 0, 0), with(mode, 0.29))
+                     .hit);
+    // Past the edge's end: the distance to the end point counts (0.5 at t = 1/2).
+    EXPECT_FALSE(vertex_edge_ccd(Vec3(1.3, 0.4, -1), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1.3, 0.4, 1),
+                                 Vec3(0, 0, 0), Vec3(1, 0, 0), with(mode, 0.49))
+                     .hit);
+    EXPECT_TRUE(vertex_edge_ccd(Vec3(1.3, 0.4, -1), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1.3, 0.4, 1),
+                                Vec3(0, 0, 0), Vec3(1, 0, 0), with(mode, 0.5))
+                    .hit);
+    // A zero-length edge is a point; coincident points are within any separation.
+    EXPECT_TRUE(vertex_edge_ccd(Vec3(0, 0, 1), origin, origin, Vec3(0, 0, -1), origin, origin, with(mode, 0.0)).hit);
+    EXPECT_EQ(vertex_vertex_ccd(origin, origin, origin, origin, with(mode, 0.5)).toi, 0.0);
+    // Two points passing 0.25 apart at t = 1/2.
+    EXPECT_TRUE(vertex_vertex_ccd(Vec3(-1, 0, 0), Vec3(1, 0.25, 0), Vec3(1, 0, 0), Vec3(-1, 0.25, 0),
+                                  with(mode, 0.25))
+                    .hit);
+    EXPECT_FALSE(vertex_vertex_ccd(Vec3(-1, 0, 0), Vec3(1, 0.25, 0), Vec3(1, 0, 0), Vec3(-1, 0.25, 0),
+                                   with(mode, 0.24))
+                     .hit);
+    // A zero-area triangle is a segment.
+    const Vec3 a(0, 0, 0), b(1, 0, 0), c(2, 0, 0);
+    EXPECT_TRUE(vertex_face_ccd(Vec3(1.5, 0.2, 0), a, b, c, Vec3(1.5, 0.2, 0), a, b, c, with(mode, 0.2)).hit);
+    EXPECT_FALSE(vertex_face_ccd(Vec3(1.5, 0.2, 0), a, b, c, Vec3(1.5, 0.2, 0), a, b, c, with(mode, 0.19)).hit);
+  }
+}
+
+TEST(MinDistance, MakeQueryLaysOutPointKinds) {
+  const std::vector<Vec3> t0{Vec3(1, 2, 3), Vec3(4, 5, 6), Vec3(7, 8, 9)}, t1{Vec3(0, 0, 1), Vec3(0, 1, 0), Vec3(1, 0, 0)};
+  const Query q = make_query(Kind::vertex_edge, t0, t1);
+  EXPECT_EQ(q.points[0], t0[0]);
+  EXPECT_EQ(q.points[1], t0[0]);
+  EXPECT_EQ(q.points[3], t0[2]);
+  EXPECT_EQ(q.points[5], t1[0]);
+  EXPECT_EQ(q.points[7], t1[2]);
+  EXPECT_THROW(make_query(Kind::vertex_vertex, t0, t1), std::invalid_argument);
+}
+
+TEST(Tmax, CutsAContactOffInEveryMode) {
+  // The vertex crosses the triangle at t = 0.6.
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  const Query crossing{{Vec3(0.2, 0.2, 0.6), a, b, c, Vec3(0.2, 0.2, -0.4), a, b, c}};
+  for (const Mode mode : {Mode::conservative, Mode::exact, Mode::fast, Mode::cubic}) {
+    SCOPED_TRACE(to_string(mode));
+    EXPECT_FALSE(query_ccd(Kind::vertex_face, crossing, with(mode, 0, 0.5)).hit);
+    const QueryResult within = query_ccd(Kind::vertex_face, crossing, with(mode, 0, 0.75));
+    EXPECT_TRUE(within.hit);
+    EXPECT_NEAR(within.toi, 0.6, 1e-6);
+    // Exactly at tmax counts.
+    if (mode == Mode::exact) {
+      EXPECT_TRUE(query_ccd(Kind::vertex_face, crossing, with(mode, 0, 0.6)).hit);
+    }
+  }
+  // With a separation of 0.1 the contact starts at t = 0.5.
+  for (const Mode mode : kCertified) {
+    EXPECT_FALSE(query_ccd(Kind::vertex_face, crossing, with(mode, 0.1, 0.49)).hit);
+    EXPECT_TRUE(query_ccd(Kind::vertex_face, crossing, with(mode, 0.1, 0.51)).hit);
+  }
+}
+
+TEST(Tmax, ExactModeDecidesAtTmaxExactly) {
+  // Crossing at t = 0.6 (not a dyadic): the exact stage compares with tmax exactly.
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  const Query crossing{{Vec3(0.2, 0.2, 0.6), a, b, c, Vec3(0.2, 0.2, -0.4), a, b, c}};
+  const double before = std::nextafter(0.6, 0.0), after = std::nextafter(0.6, 1.0);
+  // 0.6 as a double is either side of the true 3/5; its neighbours bracket it.
+  EXPECT_FALSE(query_ccd(Kind::vertex_face, crossing, with(Mode::exact, 0, std::nextafter(before, 0.0))).hit);
+  EXPECT_TRUE(query_ccd(Kind::vertex_face, crossing, with(Mode::exact, 0, after)).hit);
+}
+
+TEST(BadOptions, AreRefusedByEveryCall) {
+  const Query q = vertex_dipping_to(1);
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  for (const Options& bad : {with(Mode::conservative, -1), with(Mode::conservative, nan), with(Mode::exact, inf),
+                             with(Mode::conservative, 0, 0), with(Mode::conservative, 0, 1.5),
+                             with(Mode::conservative, 0, nan), with(Mode::cubic, 0.1)}) {
+    EXPECT_THROW(query_ccd(Kind::vertex_face, q, bad), std::invalid_argument);
+    EXPECT_THROW(batch_ccd(Kind::vertex_face, std::vector<Query>{q}, bad), std::invalid_argument);
+    const Eigen::MatrixXd positions = Eigen::MatrixXd::Zero(3, 3);
+    const Eigen::MatrixXi faces = Eigen::MatrixXi::Zero(0, 3);
+    EXPECT_THROW(mesh_ccd({positions, positions, faces}, Candidates{}, bad), std::invalid_argument);
+  }
+  try {
+    query_ccd(Kind::vertex_face, q, with(Mode::conservative, -0.5));
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("min_distance"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("-0.5"), std::string::npos) << error.what();
+  }
+  // Per-candidate separations: the length and each value.
+  BatchResult out;
+  const std::vector<Query> queries{q, q};
+  const std::vector<double> short_list{0.1}, bad_value{0.1, -2};
+  EXPECT_THROW(batch_ccd(Kind::vertex_face, queries, short_list, Options{}, out), std::invalid_argument);
+  try {
+    batch_ccd(Kind::vertex_face, queries, bad_value, Options{}, out);
+    ADD_FAILURE() << "a negative separation was accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("candidate 1"), std::string::npos) << error.what();
+  }
+}
+
+// Random queries of every kind with dyadic coordinates, near misses among them.
+struct RandomQueries {
+  std::mt19937_64 random{20261124};
+  double coordinate() { return static_cast<double>(std::uniform_int_distribution<int>(-1024, 1024)(random)) / 1024; }
+  Vec3 point() { return {coordinate(), coordinate(), coordinate()}; }
+  Query next(Kind kind) {
+    std::vector<Vec3> t0, t1;
+    for (int k = 0; k < points_per_time(kind); ++k) {
+      t0.push_back(point());
+      t1.push_back(point());
+    }
+    return make_query(kind, t0, t1);
+  }
+};
+
+constexpr Kind kKinds[] = {Kind::vertex_face, Kind::edge_edge, Kind::vertex_edge, Kind::vertex_vertex};
+
+// Exact distances at 65 times: a sampled time within the separation proves a
+// contact; a certified miss must have none, and a hit's toi none before it.
+TEST(MinDistance, AgreesWithExactDistancesAtSampledTimes) {
+  RandomQueries generator;
+  const double separation = 0.25;
+  const Rational separation2 = Rational(separation) * Rational(separation);
+  int hits = 0, misses = 0;
+  for (const Kind kind : kKinds)
+    for (int n = 0; n < 60; ++n) {
+      const Query q = generator.next(kind);
+      int first_sample = -1;
+      for (int k = 0; k <= 64 && first_sample < 0; ++k)
+        if (squared_distance_at(kind, q, Rational(k, 64)) <= separation2) first_sample = k;
+      for (const Mode mode : kCertified) {
+        const QueryResult result = query_ccd(kind, q, with(mode, separation));
+        if (first_sample >= 0) {
+          EXPECT_TRUE(result.hit) << to_string(kind) << " " << n << " " << to_string(mode);
+          EXPECT_LE(result.toi, first_sample / 64.0);
+        }
+        (result.hit ? hits : misses) += 1;
+      }
+    }
+  // The generator's queries are neither all hits nor all misses.
+  EXPECT_GT(hits, 60);
+  EXPECT_GT(misses, 60);
+}
+
+TEST(MinDistance, Properties) {
+  RandomQueries generator;
+  for (const Kind kind : kKinds)
+    for (int n = 0; n < 40; ++n) {
+      const Query q = generator.next(kind);
+      const QueryResult zero = query_ccd(kind, q, with(Mode::exact, 0));
+      const QueryResult small = query_ccd(kind, q, with(Mode::exact, 0x1p-60));
+      const QueryResult at = query_ccd(kind, q, with(Mode::exact, 0.125));
+      const QueryResult larger = query_ccd(kind, q, with(Mode::exact, 0.25));
+      // A hit at a separation is a hit at every larger one, never later.
+      if (zero.hit) {
+        EXPECT_TRUE(small.hit);
+      }
+      if (at.hit) {
+        EXPECT_TRUE(larger.hit);
+        EXPECT_LE(larger.toi, at.toi);
+      }
+      // A separation that tends to 0 gives the zero-separation decision.
+      EXPECT_EQ(small.hit, zero.hit) << to_string(kind) << " " << n;
+      // Powers of two scale nothing that matters.
+      Query scaled = q;
+      for (Vec3& p : scaled.points) p *= 0x1p-300;
+      for (const Mode mode : kCertified) {
+        const QueryResult original = query_ccd(kind, q, with(mode, 0.125));
+        const QueryResult tiny = query_ccd(kind, scaled, with(mode, 0.125 * 0x1p-300));
+        EXPECT_EQ(original.hit, tiny.hit);
+        EXPECT_EQ(original.toi, tiny.toi);
+      }
+      // Axis permutations, the order of the primitives and time reversal keep the decision.
+      Query permuted = q, reversed = q;
+      for (Vec3& p : permuted.points) p = Vec3(p.z(), p.x(), p.y());
+      for (int k = 0; k < 4; ++k) std::swap(reversed.points[k], reversed.points[k + 4]);
+      EXPECT_EQ(query_ccd(kind, permuted, with(Mode::exact, 0.125)).hit, at.hit);
+      EXPECT_EQ(query_ccd(kind, reversed, with(Mode::exact, 0.125)).hit, at.hit);
+      if (kind != Kind::vertex_face) {
+        Query swapped = q;
+        for (int t = 0; t < 8; t += 4) {
+          std::swap(swapped.points[t], swapped.points[t + 2]);
+          std::swap(swapped.points[t + 1], swapped.points[t + 3]);
+        }
+        EXPECT_EQ(query_ccd(Kind::edge_edge, swapped, with(Mode::exact, 0.125)).hit, at.hit);
+      } else {
+        Query rotated = q;  // the triangle's corners in another order
+        for (int t = 0; t < 8; t += 4) std::swap(rotated.points[t + 1], rotated.points[t + 3]);
+        EXPECT_EQ(query_ccd(kind, rotated, with(Mode::exact, 0.125)).hit, at.hit);
+      }
+    }
+}
+
+TEST(MinDistance, BatchesEqualSingleQueriesWithEveryInstructionSet) {
+  RandomQueries generator;
+  for (const Kind kind : kKinds) {
+    std::vector<Query> queries;
+    std::vector<double> separations;
+    for (int n = 0; n < 200; ++n) {
+      queries.push_back(generator.next(kind));
+      separations.push_back(n % 3 == 0 ? 0.0 : 0.0625 * (n % 5));
+    }
+    for (const Isa isa : available_isas()) {
+      Options options;
+      options.isa = isa;
+      BatchResult batch;
+      batch_ccd(kind, queries, separations, options, batch);
+      for (std::size_t i = 0; i < queries.size(); ++i) {
+        Options single = options;
+        single.min_distance = separations[i];
+        const QueryResult alone = query_ccd(kind, queries[i], single);
+        EXPECT_EQ(batch.results[i].hit, alone.hit) << to_string(kind) << " " << i;
+        EXPECT_EQ(batch.results[i].toi, alone.toi) << to_string(kind) << " " << i;
+      }
+    }
+  }
+}
+
+TEST(MinDistance, MeshCandidatesOfEveryKind) {
+  // A falling vertex over a square of two triangles, its edges, and a static vertex.
+  Eigen::MatrixXd x0(6, 3), x1(6, 3);
+  x0 << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0.5, 0.5, 1, 2, 2, 0;
+  x1 = x0;
+  x1.row(4) << 0.5, 0.5, -1;
+  Eigen::MatrixXi faces(2, 3);
+  faces << 0, 1, 2, 0, 2, 3;
+  Candidates candidates;
+  candidates.vertex_face = {{4, 0}, {4, 1}, {5, 0}};
+  candidates.edge_edge = {{0, 1, 2, 3}};
+  candidates.vertex_edge = {{4, 0, 1}, {5, 1, 2}};
+  candidates.vertex_vertex = {{4, 2}, {5, 2}};
+  const std::vector<double> vertex_vertex_separations{0.1, 1.5};
+  Options options;
+  options.min_distance = 0.5;
+  BatchResult out;
+  mesh_ccd({x0, x1, faces}, candidates, MinDistances{.vertex_vertex = vertex_vertex_separations}, options, out);
+  ASSERT_EQ(out.results.size(), 8u);
+  std::vector<std::pair<Kind, Query>> singles;
+  const auto row = [](const Eigen::MatrixXd& x, int v) { return Vec3(x.row(v)); };
+  for (const auto& [v, f] : candidates.vertex_face)
+    singles.push_back({Kind::vertex_face, Query{{row(x0, v), row(x0, faces(f, 0)), row(x0, faces(f, 1)), row(x0, faces(f, 2)),
+                                                 row(x1, v), row(x1, faces(f, 0)), row(x1, faces(f, 1)), row(x1, faces(f, 2))}}});
+  for (const auto& e : candidates.edge_edge)
+    singles.push_back({Kind::edge_edge, Query{{row(x0, e[0]), row(x0, e[1]), row(x0, e[2]), row(x0, e[3]), row(x1, e[0]),
+                                               row(x1, e[1]), row(x1, e[2]), row(x1, e[3])}}});
+  for (const auto& [v, a, b] : candidates.vertex_edge)
+    singles.push_back({Kind::vertex_edge, make_query(Kind::vertex_edge, std::vector{row(x0, v), row(x0, a), row(x0, b)},
+                                                     std::vector{row(x1, v), row(x1, a), row(x1, b)})});
+  for (const auto& [p, q] : candidates.vertex_vertex)
+    singles.push_back({Kind::vertex_vertex, make_query(Kind::vertex_vertex, std::vector{row(x0, p), row(x0, q)},
+                                                       std::vector{row(x1, p), row(x1, q)})});
+  for (std::size_t i = 0; i < singles.size(); ++i) {
+    Options single = options;
+    if (i >= 6) single.min_distance = vertex_vertex_separations[i - 6];
+    const QueryResult alone = query_ccd(singles[i].first, singles[i].second, single);
+    EXPECT_EQ(out.results[i].hit, alone.hit) << i;
+    EXPECT_EQ(out.results[i].toi, alone.toi) << i;
+  }
+  EXPECT_TRUE(out.results[0].hit);   // the vertex falls through the first triangle
+  EXPECT_FALSE(out.results[2].hit);  // the static vertex is far from it
+  EXPECT_TRUE(out.results[4].hit);   // vertex 4 passes 0.5 from edge (0, 1) at t = 1/2
+  EXPECT_FALSE(out.results[6].hit);  // and sqrt(1/2) from vertex 2: more than its own 0.1
+  EXPECT_TRUE(out.results[7].hit);   // vertex 5 is sqrt(2) from vertex 2: within its own 1.5
+}
+
+// ../shared/data/min-distance/unit-ms1e-3: labelled by exact witnesses and a
+// conservative peer; its near misses are far from the separation, so both
+// certified modes must match every label.
+TEST(SharedMinDistanceData, CertifiedModesMatchEveryLabel) {
+  const std::filesystem::path directory = kData / "min-distance" / "unit-ms1e-3";
+  if (!std::filesystem::exists(directory / "ms.txt")) GTEST_SKIP() << directory << " is absent";
+  double separation = 0;
+  std::ifstream(directory / "ms.txt") >> separation;
+  ASSERT_EQ(separation, 1e-3);
+  for (const char* name : {"vf.csv", "ee.csv"}) {
+    const QueryFile file = read_query_csv(directory / name, *kind_from_path(directory / name));
+    ASSERT_TRUE(file.truth.has_value());
+    for (const Mode mode : kCertified) {
+      Options options = with(mode, separation);
+      const BatchResult batch = batch_ccd(file.kind, file.queries, options);
+      int false_negatives = 0, false_positives = 0;
+      for (std::size_t i = 0; i < file.queries.size(); ++i) {
+        false_negatives += (*file.truth)[i] && !batch.results[i].hit;
+        false_positives += !(*file.truth)[i] && batch.results[i].hit;
+      }
+      EXPECT_EQ(false_negatives, 0) << name << " " << to_string(mode);
+      EXPECT_EQ(false_positives, 0) << name << " " << to_string(mode);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace batchccd
