@@ -1,5 +1,8 @@
 #include "batchccd/ccd.hpp"
 
+#include <array>
+
+#include "reference/closest_distance.hpp"
 #include "reference/reference.hpp"
 #include "reference/scaled_query.hpp"
 
@@ -32,6 +35,15 @@ QueryResult vertex_edge_ccd(const Vec3& p_t0, const Vec3& e0_t0, const Vec3& e1_
 QueryResult vertex_vertex_ccd(const Vec3& p_t0, const Vec3& q_t0, const Vec3& p_t1,
                               const Vec3& q_t1, const Options& options) {
   return query_ccd(Kind::vertex_vertex, {{p_t0, p_t0, q_t0, q_t0, p_t1, p_t1, q_t1, q_t1}}, options);
+}
+
+double squared_distance(Kind kind, const Query& query, double t) {
+  std::array<reference::Point<double>, 4> x;
+  for (int k = 0; k < 4; ++k) {
+    const Vec3 p = (1 - t) * query.points[k] + t * query.points[k + 4];
+    x[k] = {p.x(), p.y(), p.z()};
+  }
+  return reference::squared_distance(kind == Kind::vertex_face, x);
 }
 
 }  // namespace batchccd

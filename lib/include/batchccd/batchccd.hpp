@@ -6,10 +6,11 @@
 // several threads; batch calls also run in parallel on their own
 // (Options::threads). No SIMD or threading type appears in these headers.
 #include "batchccd/batch.hpp"       // mesh_ccd, batch_ccd: many candidates in one call
-#include "batchccd/ccd.hpp"         // vertex_face_ccd, edge_edge_ccd: one query
-#include "batchccd/compat.hpp"      // the same, shaped like Tight Inclusion / ipc-toolkit
+#include "batchccd/ccd.hpp"         // vertex_face_ccd, edge_edge_ccd, ...: one query
+#include "batchccd/ipc.hpp"         // one query, called as in ipc-toolkit (min_distance, tmax)
 #include "batchccd/io.hpp"          // readers for query files, PLY meshes, scenes
 #include "batchccd/mesh_edges.hpp"  // mesh_ccd with an edges matrix and edge-id candidates
 #include "batchccd/options.hpp"     // Options, Mode, Isa
 #include "batchccd/query.hpp"       // Query, QueryResult, Status, Kind
+#include "batchccd/tight_inclusion.hpp"  // one query, called as in Tight Inclusion
 #include "batchccd/version.hpp"     // BATCHCCD_VERSION

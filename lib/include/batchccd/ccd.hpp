@@ -59,4 +59,10 @@ QueryResult vertex_vertex_ccd(const Vec3& p_t0, const Vec3& q_t0, const Vec3& p_
 // (the order of the query files). The same as the calls above.
 QueryResult query_ccd(Kind kind, const Query& query, const Options& options = {});
 
+// The squared Euclidean distance between the query's closed primitives at
+// time t in [0, 1], in plain double arithmetic (closest points by
+// projection; not certified): what a simulator takes a per-pair separation
+// from, such as ipc-toolkit's fraction of the initial distance.
+double squared_distance(Kind kind, const Query& query, double t = 0);
+
 }  // namespace batchccd

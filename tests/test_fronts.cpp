@@ -1,0 +1,155 @@
+// The calls shaped like ipc-toolkit's (ipc.hpp) and Tight Inclusion's
+// (tight_inclusion.hpp): the same arguments in the same order, the same
+// meaning. Coordinates are exact in binary, so contact times are exact.
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+#include "batchccd/batchccd.hpp"
+
+namespace {
+
+using batchccd::Vec3;
+using Points = std::array<Vec3, 8>;  // four at t0, then the same four at t1
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Vertex (1/4, 1/4) falls from z = 1 to z = -1 through the static unit
+// triangle in z = 0: at height h at t = (1 - h) / 2.
+Points falling_vertex(double scale = 1.0) {
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  Points x = {Vec3(0.25, 0.25, 1), a, b, c, Vec3(0.25, 0.25, -1), a, b, c};
+  for (Vec3& point : x) point *= scale;
+  return x;
+}
+
+// Edge a along x falls from z = 1 to z = -1 across the static edge b along y.
+Points crossing_edges() {
+  const Vec3 b0(0, -1, 0), b1(0, 1, 0);
+  return {Vec3(-1, 0, 1), Vec3(1, 0, 1), b0, b1, Vec3(-1, 0, -1), Vec3(1, 0, -1), b0, b1};
+}
+
+bool point_triangle(const Points& x, double& toi, double min_distance = 0, double tmax = 1) {
+  return batchccd::ipc::point_triangle_ccd(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], toi, min_distance, tmax);
+}
+
+// ipc-toolkit's effective separation around Tight Inclusion: the caller's
+// plus min(0.2 d0, 1e-4) with the default rescaling 0.8.
+double effective_separation(double initial_distance, double min_distance) {
+  return std::min(0.2 * initial_distance, 1e-4) + min_distance;
+}
+
+TEST(IpcFront, PointTriangleStopsShortOfTheEffectiveSeparation) {
+  for (const double min_distance : {0.0, 0.1}) {
+    double toi = -1;
+    ASSERT_TRUE(point_triangle(falling_vertex(), toi, min_distance));
+    const double expected = (1 - effective_separation(1, min_distance)) / 2;
+    EXPECT_LE(toi, expected);
+    EXPECT_GE(toi, expected - 1e-6);
+  }
+}
+
+// A port of ipc's (..., toi, 0.0, tmax) keeps its meaning: min_distance
+// then tmax, never tmax = 0.
+TEST(IpcFront, ArgumentsInIpcToolkitsOrder) {
+  double toi = -1;
+  EXPECT_FALSE(point_triangle(falling_vertex(), toi, 0.0, 0.4));
+  EXPECT_EQ(toi, -1);  // untouched when false, as there
+  EXPECT_TRUE(point_triangle(falling_vertex(), toi, 0.0, 0.6));
+  EXPECT_LE(toi, 0.5);
+}
+
+TEST(IpcFront, EveryKind) {
+  double toi = -1;
+  const Points e = crossing_edges();
+  ASSERT_TRUE(batchccd::ipc::edge_edge_ccd(e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7], toi, 0.25));
+  EXPECT_NEAR(toi, (1 - effective_separation(1, 0.25)) / 2, 1e-6);
+  // A point passing 0.3 above an edge's middle, and another point.
+  const Vec3 e0(0, 0, 0), e1(1, 0, 0), p0(0.5, 0.3, -1), p1(0.5, 0.3, 1);
+  EXPECT_TRUE(batchccd::ipc::point_edge_ccd(p0, e0, e1, p1, e0, e1, toi, 0.3));
+  EXPECT_LE(toi, 0.5);
+  EXPECT_FALSE(batchccd::ipc::point_edge_ccd(p0, e0, e1, p1, e0, e1, toi, 0.25));
+  EXPECT_TRUE(batchccd::ipc::point_point_ccd(p0, Vec3(0.5, 0, 0), p1, Vec3(0.5, 0, 0), toi, 0.3));
+  EXPECT_FALSE(batchccd::ipc::point_point_ccd(p0, Vec3(0.5, 0, 0), p1, Vec3(0.5, 0, 0), toi, 0.29));
+}
+
+TEST(IpcFront, NoMotionAndStartingWithinTheSeparation) {
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), p(0.25, 0.25, 0.05);
+  double toi = -1;
+  // As ipc-toolkit: nothing moves, nothing new can happen.
+  EXPECT_FALSE(batchccd::ipc::point_triangle_ccd(p, a, b, c, p, a, b, c, toi, 0.1));
+  const Vec3 moved(0.25, 0.25, 0.5);
+  EXPECT_TRUE(batchccd::ipc::point_triangle_ccd(p, a, b, c, moved, a, b, c, toi, 0.1));
+  EXPECT_EQ(toi, 0.0);
+}
+
+TEST(IpcFront, SmallToiIsRescaled) {
+  // 1e-6 above the triangle, falling 2 in the step: the effective separation
+  // leaves a toi below 1e-6, so the separation alone is asked for and the
+  // toi scaled by 0.8.
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  double toi = -1;
+  ASSERT_TRUE(batchccd::ipc::point_triangle_ccd(Vec3(0.25, 0.25, 1e-6), a, b, c, Vec3(0.25, 0.25, -2 + 1e-6), a, b, c,
+                                                toi));
+  EXPECT_GT(toi, 0.0);
+  EXPECT_LE(toi, 0.8 * 0.5e-6);
+  EXPECT_GE(toi, 0.8 * 0.5e-6 * (1 - 1e-6) - 1e-7);
+}
+
+TEST(IpcFront, BadArguments) {
+  double toi = 0;
+  const Points x = falling_vertex();
+  for (const double min_distance : {-1.0, kNaN, kInfinity})
+    EXPECT_THROW(point_triangle(x, toi, min_distance), std::invalid_argument);
+  for (const double tmax : {-0.1, 1.5, kNaN}) EXPECT_THROW(point_triangle(x, toi, 0, tmax), std::invalid_argument);
+  EXPECT_THROW(batchccd::ipc::point_triangle_ccd(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], toi, 0, 1, 0.0),
+               std::invalid_argument);
+  EXPECT_THROW(batchccd::ipc::point_triangle_ccd(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], toi, 0, 1, 1e-6,
+                                                 100, 0.0),
+               std::invalid_argument);
+  Points bad = x;
+  bad[5].y() = kNaN;
+  EXPECT_TRUE(point_triangle(bad, toi));
+  EXPECT_EQ(toi, 0.0);
+}
+
+TEST(TightInclusionFront, SeparationAndStepLimit) {
+  const Points x = falling_vertex();
+  const batchccd::ticcd::Array3 err(-1, -1, -1);
+  double toi = -1, output_tolerance = -1;
+  ASSERT_TRUE(batchccd::ticcd::vertexFaceCCD(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], err, 0.1, toi, 1e-6,
+                                             1.0, 1'000'000, output_tolerance));
+  EXPECT_LE(toi, 0.45);
+  EXPECT_GE(toi, 0.45 - 1e-6);
+  EXPECT_EQ(output_tolerance, 1e-6);
+  EXPECT_FALSE(batchccd::ticcd::vertexFaceCCD(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], err, 0.1, toi, 1e-6,
+                                              0.4, 1'000'000, output_tolerance));
+  EXPECT_EQ(toi, kInfinity);
+  const Points e = crossing_edges();
+  ASSERT_TRUE(batchccd::ticcd::edgeEdgeCCD(e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7], err, 0.0, toi, 1e-6, 1.0,
+                                           -1, output_tolerance));
+  EXPECT_LE(toi, 0.5);
+  EXPECT_GE(toi, 0.5 - 1e-6);
+  EXPECT_THROW(batchccd::ticcd::edgeEdgeCCD(e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7], err, -0.1, toi, 1e-6,
+                                            1.0, -1, output_tolerance),
+               std::invalid_argument);
+}
+
+// The tolerance is a distance in the caller's units: coordinates, separation
+// and tolerance scaled together by a power of two give the same toi.
+TEST(TightInclusionFront, ScalesWithTheCoordinates) {
+  const batchccd::ticcd::Array3 err(-1, -1, -1);
+  double toi = -1, scaled_toi = -2, output_tolerance = 0;
+  const Points x = falling_vertex(), big = falling_vertex(0x1p40);
+  ASSERT_TRUE(batchccd::ticcd::vertexFaceCCD(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], err, 0.125, toi, 1e-6,
+                                             1.0, -1, output_tolerance));
+  ASSERT_TRUE(batchccd::ticcd::vertexFaceCCD(big[0], big[1], big[2], big[3], big[4], big[5], big[6], big[7], err,
+                                             0.125 * 0x1p40, scaled_toi, 1e-6 * 0x1p40, 1.0, -1, output_tolerance));
+  EXPECT_EQ(toi, scaled_toi);
+}
+
+}  // namespace
