@@ -12,6 +12,8 @@
 
 #include "broad_phase.hpp"
 
+#include "batchccd/candidates.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -220,26 +222,19 @@ void sweep(const std::vector<Box>& drivers, const std::vector<Box>& others, int 
                     });
 }
 
-}  // namespace
-
-std::vector<std::array<int, 2>> unique_edges(const Eigen::MatrixXi& faces) {
-  std::vector<PairKey> keys;
-  keys.reserve(3 * static_cast<std::size_t>(faces.rows()));
-  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = faces(f, k), b = faces(f, (k + 1) % 3);
-      if (a != b) keys.push_back(pair_key(std::min(a, b), std::max(a, b)));
-    }
-  }
-  tbb::parallel_sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  std::vector<std::array<int, 2>> edges(keys.size());
-  for (std::size_t e = 0; e < keys.size(); ++e) edges[e] = {first_of(keys[e]), second_of(keys[e])};
+// The mesh's unique edges (batchccd::unique_edges) as the sweeps use them.
+std::vector<std::array<int, 2>> edges_of(const Eigen::MatrixXi& faces) {
+  const Eigen::MatrixXi matrix = unique_edges(faces);
+  std::vector<std::array<int, 2>> edges(static_cast<std::size_t>(matrix.rows()));
+  for (Eigen::Index e = 0; e < matrix.rows(); ++e)
+    edges[static_cast<std::size_t>(e)] = {matrix(e, 0), matrix(e, 1)};
   return edges;
 }
 
+}  // namespace
+
 double mean_edge_length(const MeshView& mesh) {
-  const std::vector<std::array<int, 2>> edges = unique_edges(mesh.faces);
+  const std::vector<std::array<int, 2>> edges = edges_of(mesh.faces);
   if (edges.empty()) return 0;
   double sum = 0;
   for (const auto& [a, b] : edges)
@@ -251,7 +246,7 @@ Candidates swept_box_candidates(const MeshView& mesh, double margin) {
   check_input(mesh, margin);
   const std::array<int, 3> axes = axes_by_spread(mesh);
   const int axis = axes[0];
-  const std::vector<std::array<int, 2>> edges = unique_edges(mesh.faces);
+  const std::vector<std::array<int, 2>> edges = edges_of(mesh.faces);
   const auto vertex_count = static_cast<std::size_t>(mesh.positions_t0.rows());
   const auto face_count = static_cast<std::size_t>(mesh.faces.rows());
 
@@ -329,26 +324,5 @@ Candidates swept_box_candidates(const MeshView& mesh, double margin) {
   });
   return candidates;
 }
-
-namespace {
-
-// Vertices ids[0..3] at t0, then at t1.
-Query query_of(const MeshView& mesh, const std::array<int, 4>& ids) {
-  Query query;
-  for (std::size_t k = 0; k < 4; ++k) {
-    query.points[k] = mesh.positions_t0.row(ids[k]).transpose();
-    query.points[k + 4] = mesh.positions_t1.row(ids[k]).transpose();
-  }
-  return query;
-}
-
-}  // namespace
-
-Query vertex_face_query(const MeshView& mesh, const std::array<int, 2>& pair) {
-  const auto [vertex, face] = pair;
-  return query_of(mesh, {vertex, mesh.faces(face, 0), mesh.faces(face, 1), mesh.faces(face, 2)});
-}
-
-Query edge_edge_query(const MeshView& mesh, const std::array<int, 4>& pair) { return query_of(mesh, pair); }
 
 }  // namespace batchccd::scenes

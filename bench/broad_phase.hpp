@@ -13,11 +13,7 @@
 // product, so it stays a plain sort-and-sweep.
 namespace batchccd::scenes {
 
-// The undirected edges of the triangles, each once as (i, j) with i < j,
-// sorted lexicographically.
-std::vector<std::array<int, 2>> unique_edges(const Eigen::MatrixXi& faces);
-
-// The mean length of the mesh's unique edges at t0; 0 for a mesh without edges.
+// The mean length of the mesh's unique edges (batchccd::unique_edges) at t0; 0 for a mesh without edges.
 double mean_edge_length(const MeshView& mesh);
 
 // Every primitive (vertex, edge, face) gets the box of its vertices at t0 and
@@ -29,10 +25,5 @@ double mean_edge_length(const MeshView& mesh);
 // Both lists are sorted, so the output depends on nothing but the input.
 // Runs in parallel in the caller's oneTBB arena.
 Candidates swept_box_candidates(const MeshView& mesh, double margin);
-
-// A candidate as the raw query batch_ccd takes (points in Query's order), for
-// peers and benchmarks that work on raw queries.
-Query vertex_face_query(const MeshView& mesh, const std::array<int, 2>& pair);
-Query edge_edge_query(const MeshView& mesh, const std::array<int, 4>& pair);
 
 }  // namespace batchccd::scenes

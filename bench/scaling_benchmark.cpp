@@ -40,7 +40,7 @@ const Workload& workload() {
     const MeshView view = w.mesh.view();
     w.candidates = scenes::swept_box_candidates(view, scenes::mean_edge_length(view));
     for (const auto& pair : w.candidates.edge_edge)
-      w.edge_edge_queries.push_back(scenes::edge_edge_query(view, pair));
+      w.edge_edge_queries.push_back(batchccd::edge_edge_query(view, pair));
     return w;
   }();
   return data;

@@ -35,7 +35,7 @@ const ClothCandidates& cloth() {
     d.mesh = scenes::cloth_scene({});
     d.candidates = scenes::swept_box_candidates(d.mesh.view(), scenes::mean_edge_length(d.mesh.view()));
     for (const auto& pair : d.candidates.vertex_face)
-      d.vertex_face_queries.push_back(scenes::vertex_face_query(d.mesh.view(), pair));
+      d.vertex_face_queries.push_back(batchccd::vertex_face_query(d.mesh.view(), pair));
     return d;
   }();
   return data;

@@ -3,8 +3,9 @@
 #include <filesystem>
 #include <iosfwd>
 #include <string>
-#include <string_view>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "run.hpp"
 
@@ -12,18 +13,13 @@
 // the per-query results file of --out.
 namespace batchccd::cli {
 
-// A JSON string literal, quotes included. Control characters are escaped;
-// bytes that are not valid UTF-8 (paths are bytes) become U+FFFD.
-std::string json_string(std::string_view text);
+// input, kind, mode, isa, threads, queries, hits, positives,
+// false_positives, false_negatives (null without ground truth), culled,
+// seconds, queries_per_second, exact_escalations, max_query_seconds.
+nlohmann::ordered_json json_object(const InputReport& report);
 
-// The shortest decimal that reads back as the same double; "inf" / "-inf" /
-// "nan" for the non-finite values.
-std::string round_trip_decimal(double value);
-
-// One JSON object, no newline: input, kind, mode, isa, threads, queries,
-// hits, positives, false_positives, false_negatives (null without ground
-// truth), culled, seconds, queries_per_second, exact_escalations,
-// max_query_seconds.
+// json_object on one line. Bytes of the input path that are not UTF-8 (paths
+// are bytes) become U+FFFD; a non-finite number is null.
 std::string json_line(const InputReport& report);
 
 // One row per report and a totals row, columns aligned; nothing when there

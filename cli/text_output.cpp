@@ -1,6 +1,7 @@
 #include "text_output.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <fstream>
 #include <ostream>
@@ -30,6 +31,12 @@ void print_aligned(std::ostream& out, std::span<const TableColumn> columns,
   };
   print_row([&](std::size_t i) { return columns[i].header; });
   for (const auto& row : rows) print_row([&](std::size_t i) { return std::string_view(row[i]); });
+}
+
+std::string round_trip_decimal(double value) {
+  char buffer[64];  // to_chars needs at most 24 for a double
+  const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return error == std::errc() ? std::string(buffer, end) : "nan";
 }
 
 std::string fixed(double value, int decimals) {

@@ -22,6 +22,10 @@ struct TableColumn {
 void print_aligned(std::ostream& out, std::span<const TableColumn> columns,
                    const std::vector<std::vector<std::string>>& rows);
 
+// The shortest decimal that reads back as the same double; "inf" / "-inf" /
+// "nan" for the non-finite values.
+std::string round_trip_decimal(double value);
+
 // "%.*f" and "%.*g" without the locale.
 std::string fixed(double value, int decimals);
 std::string general(double value, int digits);

@@ -16,7 +16,7 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/include/batchccd
 get_target_property(batchccd_binary_dir batchccd BINARY_DIR)  # version.hpp is generated there
 install(FILES ${batchccd_binary_dir}/include/batchccd/version.hpp
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/batchccd)
-if(TARGET batchccd_cli)
+if(TARGET batchccd_cli AND BATCHCCD_BUILD_CLI)
   install(TARGETS batchccd_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
 

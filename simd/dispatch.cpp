@@ -1,3 +1,4 @@
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -26,6 +27,13 @@ std::size_t filter_range_scalar(const Source& source, std::size_t begin, std::si
 }
 
 bool processor_has(Isa isa) {
+#ifdef BATCHCCD_PORTABLE_ONLY
+  if (isa != Isa::scalar) return false;  // this build has no vector kernels
+#endif
+  // BATCHCCD_HIDE_ISA=avx2,avx512 hides sets, so the unavailable path is testable anywhere.
+  if (const char* hidden = std::getenv("BATCHCCD_HIDE_ISA"); hidden && isa != Isa::scalar &&
+      (std::string(",") + hidden + ",").find(std::string(",") + to_string(isa) + ",") != std::string::npos)
+    return false;
   const auto available = xsimd::available_architectures();
   switch (isa) {
     case Isa::scalar: return true;

@@ -22,6 +22,8 @@ struct RawQueries {
   const Query* queries;
   bool stream = false;  // too many to stay in cache: the lanes prefetch ahead
 };
+// The lanes read a query as 24 contiguous doubles, point k at 3 k.
+static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Query) == 8 * sizeof(Vec3));
 
 // Raw queries of one kind, fixed at compile time as a mesh source's is: the
 // lane kernels take them so (a query's point order depends on its kind).

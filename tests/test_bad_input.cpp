@@ -10,8 +10,7 @@
 // - degenerate geometry (repeated face vertices, a vertex of its own face,
 //   edges sharing a vertex, zero-length edges): valid, evaluated as the
 //   geometry it describes;
-// - the command-line tool: --out is replaced atomically, and one bad input
-//   among several costs only its own results.
+// - bad files: the readers throw InputError naming the file and the line.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -20,19 +19,17 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <gtest/gtest.h>
 
 #include "batchccd/batchccd.hpp"
-#include "report_format.hpp"
-#include "run.hpp"
 
 namespace {
 
@@ -561,20 +558,11 @@ TEST(BadInputMesh, MeshWithoutFacesServesEdgeEdgeCandidates) {
 }
 
 // ---------------------------------------------------------------------------
-// The command-line tool never loses work.
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+// Bad files: the readers refuse them naming file and line, before anything runs.
 
 void write_file(const fs::path& path, const std::string& content) {
   fs::create_directories(path.parent_path());
   std::ofstream(path, std::ios::binary) << content;
-}
-
-std::size_t line_count(const std::string& text) {
-  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
 }
 
 // A query file of the given queries, coordinates as integers over 1.
@@ -585,7 +573,7 @@ std::string query_csv(const std::vector<Query>& queries) {
   return text.str();
 }
 
-class BadInputCli : public ::testing::Test {
+class BadInputFiles : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
@@ -598,55 +586,22 @@ class BadInputCli : public ::testing::Test {
 
   fs::path path(const std::string& relative) const { return directory_ / relative; }
 
-  // One report holding `hits` hits followed by `misses` misses.
-  static batchccd::cli::InputReport report_of(int hits, int misses) {
-    batchccd::cli::InputReport report;
-    for (int i = 0; i < hits; ++i) report.results.push_back({true, 0.5, Status::ok});
-    for (int i = 0; i < misses; ++i) report.results.push_back({});
-    return report;
-  }
-
-  // Files left behind by a write, other than the ones named.
-  std::vector<std::string> temporary_files() const {
-    std::vector<std::string> found;
-    for (const auto& entry : fs::recursive_directory_iterator(directory_))
-      if (entry.path().filename().string().find(".tmp-") != std::string::npos)
-        found.push_back(entry.path().string());
-    return found;
+  // The InputError `read` throws; fails the test when it throws none.
+  template <class Read>
+  static std::optional<batchccd::InputError> error_of(Read read) {
+    try {
+      read();
+    } catch (const batchccd::InputError& error) {
+      return error;
+    }
+    ADD_FAILURE() << "no InputError";
+    return std::nullopt;
   }
 
   fs::path directory_;
 };
 
-TEST_F(BadInputCli, OutKeepsTheOldFileWhenTheNewOneCannotBeWritten) {
-  const fs::path out = path("results.txt");
-  write_file(out, "earlier results\n");
-  // Occupy the temporary file's name with a directory: the write must fail
-  // before anything touches results.txt.
-  fs::path blocker = out;
-  blocker += ".tmp-" + std::to_string(::getpid());
-  fs::create_directories(blocker);
-  EXPECT_THROW(batchccd::cli::write_results_file(out, {report_of(2, 1)}), std::runtime_error);
-  EXPECT_EQ(read_file(out), "earlier results\n");
-  fs::remove(blocker);
-  batchccd::cli::write_results_file(out, {report_of(2, 1)});
-  EXPECT_EQ(line_count(read_file(out)), 3u);
-  EXPECT_TRUE(temporary_files().empty());
-}
-
-TEST_F(BadInputCli, OutOntoADirectoryFailsAndLeavesItAlone) {
-  const fs::path out = path("results");
-  write_file(out / "inside.txt", "keep\n");
-  EXPECT_THROW(batchccd::cli::write_results_file(out, {report_of(1, 1)}), std::runtime_error);
-  EXPECT_EQ(read_file(out / "inside.txt"), "keep\n");
-  EXPECT_TRUE(temporary_files().empty());
-}
-
-// A scene with an out-of-range candidate between two good query files: the
-// scene is reported, the good files' results are all written, in order.
-TEST_F(BadInputCli, BadSceneAmongGoodInputsCostsOnlyItsOwnResults) {
-  write_file(path("vf/good.csv"), query_csv({kVertexFaceHit, kVertexFaceMiss, kVertexFaceHit}));
-  write_file(path("ee/good.csv"), query_csv({kEdgeEdgeMiss, kEdgeEdgeHit}));
+TEST_F(BadInputFiles, SceneWithAnOutOfRangeCandidateNamesItsLine) {
   const std::string ply =
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
       "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
@@ -654,42 +609,26 @@ TEST_F(BadInputCli, BadSceneAmongGoodInputsCostsOnlyItsOwnResults) {
   write_file(path("scene/t1.ply"), ply);
   write_file(path("scene/vf.csv"), "0,0\n");
   write_file(path("scene/ee.csv"), "0,1,1,2\n0,1,2,7\n");  // vertex 7 of 3
-  write_file(path("results.txt"), "earlier results\n");
-
-  const std::string command = "cd '" + directory_.string() + "' && '" + BATCHCCD_CLI_PATH +
-                              "' run --json --out results.txt vf/good.csv scene ee/good.csv" +
-                              " > stdout.txt 2> stderr.txt";
-  const int status = std::system(command.c_str());
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 1);
-  const std::string errors = read_file(path("stderr.txt"));
-  EXPECT_NE(errors.find("ee.csv:2"), std::string::npos) << errors;
-  EXPECT_NE(errors.find("out of range"), std::string::npos) << errors;
-  EXPECT_EQ(line_count(read_file(path("stdout.txt"))), 2u);  // one JSON line per good file
-  const std::string results = read_file(path("results.txt"));
-  EXPECT_EQ(line_count(results), 5u) << results;
-  EXPECT_EQ(results.rfind("1,", 0), 0u) << results;  // the first query of vf/good.csv hits
-  EXPECT_TRUE(temporary_files().empty());
+  const auto error = error_of([&] { batchccd::read_scene(path("scene")); });
+  ASSERT_TRUE(error);
+  EXPECT_EQ(fs::path(error->file()).filename(), "ee.csv");
+  EXPECT_EQ(error->line(), 2);
+  EXPECT_NE(std::string(error->what()).find("out of range"), std::string::npos) << error->what();
 }
 
-// In process: every error is told, every good input keeps its report.
-TEST_F(BadInputCli, EveryBadInputIsToldAndEveryGoodOneReported) {
-  write_file(path("vf/good.csv"), query_csv({kVertexFaceHit}));
-  write_file(path("vf/short.csv"), "1,1,2,1,3,1\n");               // 1 of 8 rows
-  write_file(path("vf/not-double.csv"), query_csv({kVertexFaceMiss}).replace(0, 5, "1,3,0"));
-  write_file(path("ee/good.csv"), query_csv({kEdgeEdgeHit, kEdgeEdgeMiss}));
-  batchccd::cli::RunSettings settings;
-  settings.inputs = {path("vf/good.csv"), path("vf/short.csv"), path("missing/vf.csv"), path("vf/not-double.csv"),
-                     path("ee/good.csv")};
-  settings.keep_results = true;
-  std::ostringstream errors;
-  const batchccd::cli::RunOutcome outcome = batchccd::cli::run_inputs(settings, errors);
-  EXPECT_TRUE(outcome.any_error);
-  ASSERT_EQ(outcome.reports.size(), 2u);
-  EXPECT_EQ(outcome.reports[0].results.size(), 1u);
-  EXPECT_EQ(outcome.reports[1].results.size(), 2u);
-  for (const char* bad : {"short.csv", "missing", "not-double.csv"})
-    EXPECT_NE(errors.str().find(bad), std::string::npos) << errors.str();
+TEST_F(BadInputFiles, QueryFilesThatAreNotEightRowsOfDoublesAreRefused) {
+  write_file(path("short.csv"), "1,1,2,1,3,1\n");  // 1 of 8 rows
+  write_file(path("not-double.csv"), query_csv({kVertexFaceMiss}).replace(0, 5, "1,3,0"));
+  write_file(path("good.csv"), query_csv({kVertexFaceHit, kVertexFaceMiss}));
+  for (const char* name : {"short.csv", "not-double.csv"}) {
+    const auto error = error_of([&] { batchccd::read_query_csv(path(name), Kind::vertex_face); });
+    ASSERT_TRUE(error) << name;
+    EXPECT_EQ(fs::path(error->file()).filename(), name);
+  }
+  const auto missing = error_of([&] { batchccd::read_query_csv(path("missing.csv"), Kind::vertex_face); });
+  ASSERT_TRUE(missing);
+  EXPECT_EQ(missing->line(), 0);
+  EXPECT_EQ(batchccd::read_query_csv(path("good.csv"), Kind::vertex_face).queries.size(), 2u);
 }
 
 }  // namespace

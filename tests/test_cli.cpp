@@ -20,8 +20,9 @@
 
 #include <gtest/gtest.h>
 
-#include "compare.hpp"
-#include "demo.hpp"
+#include <nlohmann/json.hpp>
+
+#include "batchccd/batchccd.hpp"
 #include "report_format.hpp"
 #include "run.hpp"
 
@@ -115,126 +116,18 @@ void write_scene(const fs::path& directory) {
   write_file(directory / "queries_vf.csv", vertex_face_hit_and_miss);
 }
 
-// ---- a minimal JSON reader for flat objects --------------------------------
+// ---- JSON -------------------------------------------------------------------
 
-// Parses one JSON object whose values are strings, numbers, true, false or
-// null; returns nullopt on any syntax error. Values keep their JSON text,
-// except strings, which are unescaped (\u escapes as "?").
-class FlatJsonReader {
- public:
-  explicit FlatJsonReader(std::string_view text) : text_(text) {}
-
-  std::optional<std::map<std::string, std::string>> object() {
-    std::map<std::string, std::string> fields;
-    if (!consume('{')) return std::nullopt;
-    if (consume('}')) return finish(fields);
-    do {
-      auto name = string();
-      if (!name || !consume(':')) return std::nullopt;
-      auto value = scalar();
-      if (!value || fields.count(*name) != 0) return std::nullopt;
-      fields[*name] = *value;
-    } while (consume(','));
-    if (!consume('}')) return std::nullopt;
-    return finish(fields);
-  }
-
- private:
-  std::optional<std::map<std::string, std::string>> finish(
-      std::map<std::string, std::string> fields) {
-    skip_space();
-    if (at_ != text_.size()) return std::nullopt;
-    return fields;
-  }
-
-  void skip_space() {
-    while (at_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[at_]))) ++at_;
-  }
-
-  bool consume(char expected) {
-    skip_space();
-    if (at_ < text_.size() && text_[at_] == expected) {
-      ++at_;
-      return true;
-    }
-    return false;
-  }
-
-  std::optional<std::string> string() {
-    if (!consume('"')) return std::nullopt;
-    std::string value;
-    while (at_ < text_.size() && text_[at_] != '"') {
-      const char character = text_[at_++];
-      if (static_cast<unsigned char>(character) < 0x20) return std::nullopt;
-      if (character != '\\') {
-        value += character;
-        continue;
-      }
-      if (at_ >= text_.size()) return std::nullopt;
-      const char escape = text_[at_++];
-      if (escape == 'u') {
-        for (int digit = 0; digit < 4; ++digit, ++at_) {
-          if (at_ >= text_.size() || !std::isxdigit(static_cast<unsigned char>(text_[at_])))
-            return std::nullopt;
-        }
-        value += '?';
-      } else if (std::string_view("\"\\/bfnrt").find(escape) != std::string_view::npos) {
-        value += escape == 'n' ? '\n' : escape == 't' ? '\t' : escape;
-      } else {
-        return std::nullopt;
-      }
-    }
-    if (at_ >= text_.size()) return std::nullopt;
-    ++at_;
-    return value;
-  }
-
-  std::optional<std::string> scalar() {
-    skip_space();
-    if (at_ < text_.size() && text_[at_] == '"') return string();
-    for (std::string_view word : {"true", "false", "null"}) {
-      if (text_.substr(at_, word.size()) == word) {
-        at_ += word.size();
-        return std::string(word);
-      }
-    }
-    return number();
-  }
-
-  // -?(0|[1-9][0-9]*)(\.[0-9]+)?([eE][+-]?[0-9]+)?
-  std::optional<std::string> number() {
-    const std::size_t start = at_;
-    const auto digits = [&] {
-      const std::size_t first = at_;
-      while (at_ < text_.size() && std::isdigit(static_cast<unsigned char>(text_[at_]))) ++at_;
-      return at_ > first;
-    };
-    if (at_ < text_.size() && text_[at_] == '-') ++at_;
-    if (at_ < text_.size() && text_[at_] == '0') {
-      ++at_;
-    } else if (!digits()) {
-      return std::nullopt;
-    }
-    if (at_ < text_.size() && text_[at_] == '.') {
-      ++at_;
-      if (!digits()) return std::nullopt;
-    }
-    if (at_ < text_.size() && (text_[at_] == 'e' || text_[at_] == 'E')) {
-      ++at_;
-      if (at_ < text_.size() && (text_[at_] == '+' || text_[at_] == '-')) ++at_;
-      if (!digits()) return std::nullopt;
-    }
-    return std::string(text_.substr(start, at_ - start));
-  }
-
-  std::string_view text_;
-  std::size_t at_ = 0;
-};
-
+// One JSON object's fields: strings as they are, other values as JSON text
+// ("3", "null", "true"). Empty, with a test failure, when the line is not one.
 std::map<std::string, std::string> parse_json_line(const std::string& line) {
-  auto fields = FlatJsonReader(line).object();
-  EXPECT_TRUE(fields.has_value()) << "not a JSON object: " << line;
-  return fields.value_or(std::map<std::string, std::string>{});
+  std::map<std::string, std::string> fields;
+  const nlohmann::json object = nlohmann::json::parse(line, nullptr, false);
+  EXPECT_TRUE(object.is_object()) << "not a JSON object: " << line;
+  if (!object.is_object()) return fields;
+  for (const auto& [name, value] : object.items())
+    fields[name] = value.is_string() ? value.get<std::string>() : value.dump();
+  return fields;
 }
 
 const std::vector<std::string> json_field_names = {
@@ -270,10 +163,13 @@ class CliTest : public ::testing::Test {
 
   fs::path path(const std::string& relative) const { return temporary_ / relative; }
 
-  // Runs `batchccd ARGUMENTS` in the temporary directory.
-  CliRun run_cli(const std::vector<std::string>& arguments) const {
-    std::vector<std::string> words = {"cd", shell_quoted(temporary_.string()), "&&",
-                                      shell_quoted(BATCHCCD_CLI_PATH)};
+  // Runs `batchccd ARGUMENTS` in the temporary directory, with `environment`
+  // ("NAME=value" words) added to its environment.
+  CliRun run_cli(const std::vector<std::string>& arguments,
+                 const std::vector<std::string>& environment = {}) const {
+    std::vector<std::string> words = {"cd", shell_quoted(temporary_.string()), "&&", "env"};
+    for (const std::string& setting : environment) words.push_back(shell_quoted(setting));
+    words.push_back(shell_quoted(BATCHCCD_CLI_PATH));
     for (const std::string& argument : arguments) words.push_back(shell_quoted(argument));
     words.insert(words.end(), {">", shell_quoted((temporary_ / "stdout.txt").string()), "2>",
                                shell_quoted((temporary_ / "stderr.txt").string())});
@@ -317,24 +213,32 @@ class CliTest : public ::testing::Test {
 TEST_F(CliTest, NoArgumentsPrintsUsageAndExitsTwo) {
   const CliRun result = run_cli({});
   EXPECT_EQ(result.exit_code, 2);
-  EXPECT_NE(result.err.find("usage:"), std::string::npos);
+  EXPECT_NE(result.err.find("run"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("info"), std::string::npos) << result.err;
   EXPECT_TRUE(result.out.empty());
 }
 
 TEST_F(CliTest, HelpDocumentsEveryOption) {
-  for (const std::vector<std::string>& arguments :
-       {std::vector<std::string>{"--help"}, std::vector<std::string>{"run", "--help"}}) {
-    const CliRun result = run_cli(arguments);
-    EXPECT_EQ(result.exit_code, 0);
-    for (const char* option : {"--kind", "--truth", "--mode", "--threads", "--isa", "--json",
-                               "--out", "conservative", "fast", "cubic", "exact", "avx512",
-                               "INPUT", "exact_escalations", "max_query_seconds"}) {
-      EXPECT_NE(result.out.find(option), std::string::npos) << arguments.front() << ": " << option;
-    }
+  const CliRun general = run_cli({"--help"});
+  EXPECT_EQ(general.exit_code, 0);
+  for (const char* command : {"run", "info"})
+    EXPECT_NE(general.out.find(command), std::string::npos) << command;
+  const CliRun run = run_cli({"run", "--help"});
+  EXPECT_EQ(run.exit_code, 0);
+  for (const char* option : {"--kind", "--truth", "--mode", "--threads", "--isa", "--json",
+                             "--out", "conservative", "fast", "cubic", "exact", "avx512",
+                             "INPUT", "exact_escalations", "max_query_seconds", "Exit status"}) {
+    EXPECT_NE(run.out.find(option), std::string::npos) << option;
   }
 }
 
-TEST_F(CliTest, BadCommandLinesExitTwoWithUsage) {
+TEST_F(CliTest, VersionIsTheLibrarysVersion) {
+  const CliRun result = run_cli({"--version"});
+  EXPECT_EQ(result.exit_code, 0);
+  EXPECT_EQ(result.out, std::string("batchccd ") + BATCHCCD_VERSION + "\n");
+}
+
+TEST_F(CliTest, BadCommandLinesExitTwoPointingToHelp) {
   write_file(path("vf/q.csv"), vertex_face_hit_and_miss);
   const std::vector<std::vector<std::string>> bad_command_lines = {
       {"frobnicate"},
@@ -343,6 +247,7 @@ TEST_F(CliTest, BadCommandLinesExitTwoWithUsage) {
       {"run", "--bogus", "vf/q.csv"},
       {"run", "--mode", "exactly", "vf/q.csv"},
       {"run", "--mode=sloppy", "vf/q.csv"},
+      {"run", "--mode", "1", "vf/q.csv"},
       {"run", "vf/q.csv", "--mode"},
       {"run", "--threads", "0", "vf/q.csv"},
       {"run", "--threads", "-2", "vf/q.csv"},
@@ -352,13 +257,14 @@ TEST_F(CliTest, BadCommandLinesExitTwoWithUsage) {
       {"run", "--kind", "xy", "vf/q.csv"},
       {"run", "--json=yes", "vf/q.csv"},
       {"run", "--truth", "t.txt", "vf/q.csv", "vf/q.csv"},
+      {"info", "extra"},
   };
   for (const auto& arguments : bad_command_lines) {
     const CliRun result = run_cli(arguments);
     std::string shown;
     for (const auto& argument : arguments) shown += argument + " ";
-    EXPECT_EQ(result.exit_code, 2) << shown;
-    EXPECT_NE(result.err.find("usage:"), std::string::npos) << shown;
+    EXPECT_EQ(result.exit_code, 2) << shown << "\n" << result.err;
+    EXPECT_NE(result.err.find("batchccd"), std::string::npos) << shown << "\n" << result.err;
     EXPECT_TRUE(result.out.empty()) << shown;
   }
 }
@@ -373,6 +279,14 @@ TEST_F(CliTest, AcceptsEveryDocumentedOptionForm) {
     const CliRun result = run_cli(arguments);
     EXPECT_EQ(result.exit_code, 0) << result.err;
   }
+}
+
+// After "--" an argument that looks like an option is an input.
+TEST_F(CliTest, DoubleDashEndsTheOptions) {
+  write_file(path("-vf.csv"), vertex_face_hit_and_miss);
+  const auto objects = run_json({"--kind", "vf", "--", "-vf.csv"});
+  ASSERT_EQ(objects.size(), 1u);
+  EXPECT_EQ(objects[0].at("input"), "-vf.csv");
 }
 
 // ---- output -----------------------------------------------------------------
@@ -531,15 +445,37 @@ TEST_F(CliTest, UnstatablePathLosesNothing) {
   EXPECT_EQ(lines_of(read_file(path("results.txt"))).size(), 2u);
 }
 
-// An instruction set this build lacks is refused, never silently replaced.
+// An instruction set this processor lacks is refused, never silently
+// replaced; BATCHCCD_HIDE_ISA makes one unavailable on any machine.
 TEST_F(CliTest, UnavailableInstructionSetIsAnError) {
   write_file(path("vf/good.csv"), vertex_face_hit_and_miss);
-  const auto isas = batchccd::available_isas();
-  if (std::find(isas.begin(), isas.end(), batchccd::Isa::avx2) != isas.end())
-    GTEST_SKIP() << "avx2 kernels are available";
-  const CliRun result = run_cli({"run", "--isa", "avx2", "vf/good.csv"});
-  EXPECT_NE(result.exit_code, 0);
+  const CliRun result = run_cli({"run", "--isa", "avx2", "vf/good.csv"}, {"BATCHCCD_HIDE_ISA=avx2"});
+  EXPECT_EQ(result.exit_code, 1);
   EXPECT_NE(result.err.find("avx2"), std::string::npos) << result.err;
+  EXPECT_TRUE(result.out.empty()) << result.out;
+  // Hidden sets are also left out of what auto picks and of what info lists.
+  const CliRun info = run_cli({"info", "--json"}, {"BATCHCCD_HIDE_ISA=sse4,avx2,avx512"});
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const nlohmann::json object = nlohmann::json::parse(info.out);
+  EXPECT_EQ(object.at("isas"), nlohmann::json::array({"scalar"}));
+  EXPECT_EQ(object.at("auto_isa"), "scalar");
+  const auto objects = run_json({"vf/good.csv"});
+  ASSERT_EQ(objects.size(), 1u);
+}
+
+TEST_F(CliTest, InfoListsWhatThisBuildOffers) {
+  const CliRun result = run_cli({"info", "--json"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json object = nlohmann::json::parse(result.out);
+  EXPECT_EQ(object.at("version"), BATCHCCD_VERSION);
+  std::vector<std::string> isas;
+  for (const batchccd::Isa isa : batchccd::available_isas()) isas.emplace_back(batchccd::to_string(isa));
+  EXPECT_EQ(object.at("isas"), nlohmann::json(isas));
+  EXPECT_EQ(object.at("auto_isa"), batchccd::to_string(batchccd::resolve_isa(batchccd::Isa::automatic)));
+  EXPECT_EQ(object.at("modes").size(), batchccd::mode_names().size());
+  const CliRun text = run_cli({"info"});
+  EXPECT_EQ(text.exit_code, 0);
+  EXPECT_NE(text.out.find("instruction sets: scalar"), std::string::npos) << text.out;
 }
 
 TEST_F(CliTest, KindComesFromThePathOrFromKindOption) {
@@ -627,16 +563,12 @@ TEST_F(CliTest, SceneOnTheCommandLine) {
 
 // ---- formatting -------------------------------------------------------------------
 
-TEST(CliFormat, JsonStringsAreEscaped) {
-  using batchccd::cli::json_string;
-  EXPECT_EQ(json_string("plain"), "\"plain\"");
-  EXPECT_EQ(json_string("a\"b\\c"), "\"a\\\"b\\\\c\"");
-  EXPECT_EQ(json_string("line\nbreak\ttab"), "\"line\\nbreak\\ttab\"");
-  EXPECT_EQ(json_string(std::string("\x01", 1)), "\"\\u0001\"");
-  EXPECT_EQ(json_string("caf\xc3\xa9"), "\"caf\xc3\xa9\"");   // valid UTF-8 kept
-  EXPECT_EQ(json_string("bad\xff"), "\"bad\\ufffd\"");        // invalid byte replaced
-  EXPECT_EQ(json_string("\xc3"), "\"\\ufffd\"");              // truncated sequence
-  EXPECT_EQ(json_string("\xed\xa0\x80"), "\"\\ufffd\\ufffd\\ufffd\"");  // a surrogate
+// Paths are bytes: what is not UTF-8 becomes U+FFFD, the rest survives.
+TEST(CliFormat, JsonLineEscapesAnyPath) {
+  InputReport report;
+  report.input = std::string("a\"b\\c\nd\x01 caf\xc3\xa9 bad\xff");
+  const auto fields = parse_json_line(batchccd::cli::json_line(report));
+  EXPECT_EQ(fields.at("input"), "a\"b\\c\nd\x01 caf\xc3\xa9 bad\xef\xbf\xbd");
 }
 
 TEST(CliFormat, ResultLinesRoundTrip) {
@@ -655,165 +587,94 @@ TEST(CliFormat, JsonLineWithoutTimeHasNoInfinity) {
   report.input = "x";
   const std::string line = batchccd::cli::json_line(report);
   EXPECT_EQ(line.find("inf"), std::string::npos) << line;
-  EXPECT_EQ(FlatJsonReader(line).object()->at("queries_per_second"), "0");
+  EXPECT_EQ(parse_json_line(line).at("queries_per_second"), "0.0");
+  EXPECT_EQ(parse_json_line(line).at("positives"), "null");
 }
 
-// ---- demo and report --------------------------------------------------------------
+// ---- never losing work -----------------------------------------------------
 
-// methods.csv as rows of named fields.
-std::vector<std::map<std::string, std::string>> read_csv(const fs::path& file) {
-  const std::vector<std::string> lines = lines_of(read_file(file));
-  std::vector<std::map<std::string, std::string>> rows;
-  if (lines.empty()) return rows;
-  const auto split = [](const std::string& line) {
-    std::vector<std::string> cells;
-    std::string cell;
-    bool quoted = false;
-    for (const char c : line) {
-      if (c == '"') {
-        quoted = !quoted;
-      } else if (c == ',' && !quoted) {
-        cells.push_back(cell);
-        cell.clear();
-      } else {
-        cell += c;
-      }
-    }
-    cells.push_back(cell);
-    return cells;
-  };
-  const std::vector<std::string> header = split(lines.front());
-  for (std::size_t i = 1; i < lines.size(); ++i) {
-    const std::vector<std::string> cells = split(lines[i]);
-    EXPECT_EQ(cells.size(), header.size()) << lines[i];
-    std::map<std::string, std::string> row;
-    for (std::size_t c = 0; c < std::min(cells.size(), header.size()); ++c) row[header[c]] = cells[c];
-    rows.push_back(row);
-  }
-  return rows;
+// One report holding `hits` hits followed by `misses` misses.
+InputReport report_of(int hits, int misses) {
+  InputReport report;
+  for (int i = 0; i < hits; ++i) report.results.push_back({true, 0.5, batchccd::Status::ok});
+  for (int i = 0; i < misses; ++i) report.results.push_back({});
+  return report;
 }
 
-std::vector<std::string> method_names() {
-  std::vector<std::string> names;
-  for (const auto method : batchccd::cli::compared_methods())
-    names.emplace_back(batchccd::cli::name_of(method));
-  return names;
+TEST_F(CliTest, OutKeepsTheOldFileWhenTheNewOneCannotBeWritten) {
+  const fs::path out = path("results.txt");
+  write_file(out, "earlier results\n");
+  // Occupy the temporary file's name with a directory: the write must fail
+  // before anything touches results.txt.
+  fs::path blocker = out;
+  blocker += ".tmp-" + std::to_string(::getpid());
+  fs::create_directories(blocker);
+  EXPECT_THROW(batchccd::cli::write_results_file(out, {report_of(2, 1)}), std::runtime_error);
+  EXPECT_EQ(read_file(out), "earlier results\n");
+  fs::remove(blocker);
+  batchccd::cli::write_results_file(out, {report_of(2, 1)});
+  EXPECT_EQ(lines_of(read_file(out)).size(), 3u);
+  EXPECT_TRUE(files_containing(".tmp-").empty());
 }
 
-TEST(CliCompare, TallyCountsErrorsAgainstTruthAndToiAgainstTheReference) {
-  using batchccd::QueryResult;
-  batchccd::cli::MethodRun run;
-  run.results = {{true, 0.5}, {false}, {true, 0.25}, {true, 0.0}};
-  run.seconds = 2;
-  run.culled = 1;
-  const std::vector<bool> truth = {true, true, true, false};
-  const std::vector<QueryResult> reference = {{true, 0.5}, {true, 0.1}, {true, 0.3}, {false}};
-  batchccd::cli::MethodTally tally;
-  tally.add(run, truth, reference);
-  EXPECT_EQ(tally.candidates, 4);
-  EXPECT_EQ(tally.false_negatives, 1);
-  EXPECT_EQ(tally.false_positives, 1);
-  EXPECT_EQ(tally.toi_compared, 2);
-  EXPECT_DOUBLE_EQ(tally.toi_error_max, 0.05);
-  EXPECT_DOUBLE_EQ(tally.toi_error_mean(), 0.025);
-  EXPECT_DOUBLE_EQ(tally.candidates_per_second(), 2);
-  EXPECT_DOUBLE_EQ(tally.cull_ratio(), 0.25);
-  batchccd::cli::MethodTally twice = tally;
-  twice += tally;
-  EXPECT_EQ(twice.false_negatives, 2);
-  EXPECT_DOUBLE_EQ(twice.toi_error_max, 0.05);
-  EXPECT_DOUBLE_EQ(twice.toi_error_mean(), 0.025);
-  EXPECT_THROW(tally.add(run, {true}, reference), std::logic_error);
+TEST_F(CliTest, OutOntoADirectoryFailsAndLeavesItAlone) {
+  const fs::path out = path("results");
+  write_file(out / "inside.txt", "keep\n");
+  EXPECT_THROW(batchccd::cli::write_results_file(out, {report_of(1, 1)}), std::runtime_error);
+  EXPECT_EQ(read_file(out / "inside.txt"), "keep\n");
+  EXPECT_TRUE(files_containing(".tmp-").empty());
 }
 
-TEST_F(CliTest, ReportComparesEveryMethodAgainstTheFilesTruth) {
-  write_scene(path("data/scene"));
-  write_file(path("data/vf/q.csv"), vertex_face_hit_and_miss);
-  write_file(path("data/ee/q.csv"), edge_edge_hit_and_miss);
-  const CliRun result = run_cli({"report", "--threads", "2", "--out", "out", "data"});
-  ASSERT_EQ(result.exit_code, 0) << result.err;
-  for (const std::string& method : method_names())
-    EXPECT_NE(result.out.find("\n" + method + " "), std::string::npos) << method << "\n" << result.out;
-  const auto rows = read_csv(path("out/methods.csv"));
-  ASSERT_EQ(rows.size(), 4 * method_names().size());  // 3 inputs and the totals, per method
-  for (const auto& row : rows) {
-    // The inputs hold clean hits and clear misses: the certified modes get all right.
-    if (row.at("method") == "exact" || row.at("method") == "conservative") {
-      EXPECT_EQ(row.at("false_negatives"), "0") << row.at("input");
-      EXPECT_EQ(row.at("false_positives"), "0") << row.at("input");
-    }
-    if (row.at("input") == "total") {
-      EXPECT_EQ(row.at("candidates"), "8");
-    }
-  }
-  const std::string svg = read_file(path("out/plot.svg"));
-  EXPECT_NE(svg.find("run time"), std::string::npos);
-  for (const std::string& method : method_names()) EXPECT_NE(svg.find(">" + method + "<"), std::string::npos);
-}
-
-TEST_F(CliTest, ReportGoesOnPastABadInputAndSaysSo) {
-  write_file(path("vf/q.csv"), vertex_face_hit_and_miss);
-  write_file(path("vf/bad.csv"), "1,1,2\n");
-  const CliRun result = run_cli({"report", "vf/bad.csv", "missing", "vf/q.csv"});
-  EXPECT_EQ(result.exit_code, 1);
-  EXPECT_NE(result.err.find("bad.csv:1"), std::string::npos) << result.err;
-  EXPECT_NE(result.err.find("missing"), std::string::npos) << result.err;
-  EXPECT_NE(result.out.find("1 inputs, 2 candidates"), std::string::npos) << result.out;
-}
-
-TEST_F(CliTest, DemoAndReportCommandLines) {
-  for (const auto& arguments : std::vector<std::vector<std::string>>{
-           {"demo", "--scene", "sphere"}, {"demo", "--resolution", "0"}, {"demo", "extra"},
-           {"demo", "--methods-only=yes"}, {"report"}, {"report", "--threads", "x", "a"},
-           {"report", "--bogus", "a"}}) {
-    const CliRun result = run_cli(arguments);
-    EXPECT_EQ(result.exit_code, 2) << arguments[1];
-    EXPECT_NE(result.err.find("usage: batchccd " + arguments[0]), std::string::npos) << result.err;
-  }
-  for (const std::string command : {"demo", "report"}) {
-    const CliRun help = run_cli({command, "--help"});
-    EXPECT_EQ(help.exit_code, 0);
-    EXPECT_NE(help.out.find("usage: batchccd " + command), std::string::npos);
-    EXPECT_NE(help.out.find("--threads"), std::string::npos);
-  }
-}
-
-// A small cloth: every method runs, exact mode is the truth, and the
-// certified mode misses nothing.
-TEST_F(CliTest, DemoPrintsTheTableAndWritesReportCsvAndPlot) {
-  const CliRun result = run_cli({"demo", "--resolution", "24", "--threads", "2", "--out", "out"});
-  ASSERT_EQ(result.exit_code, 0) << result.err;
-  EXPECT_TRUE(result.err.empty()) << "progress must stay off a non-terminal: " << result.err;
-  for (const char* section : {"candidates/s", "What a call pays for", "Stiff and extreme"})
-    EXPECT_NE(result.out.find(section), std::string::npos) << section;
-  EXPECT_EQ(read_file(path("out/report.txt")) + "wrote out/report.txt, out/methods.csv, out/plot.svg\n",
-            result.out);
-  const auto rows = read_csv(path("out/methods.csv"));
-  ASSERT_EQ(rows.size(), method_names().size());
-  std::map<std::string, std::map<std::string, std::string>> by_method;
-  for (const auto& row : rows) by_method[row.at("method")] = row;
-  EXPECT_EQ(by_method.at("exact").at("false_negatives"), "0");
-  EXPECT_EQ(by_method.at("exact").at("false_positives"), "0");
-  EXPECT_EQ(by_method.at("exact").at("toi_error_max"), "0");
-  EXPECT_EQ(by_method.at("conservative").at("false_negatives"), "0");
-  EXPECT_GT(std::stod(by_method.at("conservative").at("cull_ratio")), 0.9);
-  EXPECT_EQ(by_method.at("cubic").at("culled"), "0");
-  // The scene has contacts: TOIs were compared.
-  EXPECT_GT(std::stol(by_method.at("conservative").at("toi_compared")), 0);
-  EXPECT_NE(read_file(path("out/plot.svg")).find("</svg>"), std::string::npos);
-}
-
-TEST_F(CliTest, DemoIntoAnUnwritableDirectoryIsAnErrorAfterTheReport) {
-  write_file(path("blocker"), "a file where the directory should go");
+// A scene with an out-of-range candidate between two good query files: the
+// scene is reported, the good files' results are all written, in order.
+TEST_F(CliTest, BadSceneAmongGoodInputsCostsOnlyItsOwnResults) {
+  write_file(path("vf/good.csv"),
+             query_csv({{vertex_face_hit, true}, {vertex_face_miss, false}, {vertex_face_hit, true}}));
+  write_file(path("ee/good.csv"), query_csv({{edge_edge_miss, false}, {edge_edge_hit, true}}));
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  write_file(path("scene/t0.ply"), ply);
+  write_file(path("scene/t1.ply"), ply);
+  write_file(path("scene/vf.csv"), "0,0\n");
+  write_file(path("scene/ee.csv"), "0,1,1,2\n0,1,2,7\n");  // vertex 7 of 3
+  write_file(path("results.txt"), "earlier results\n");
   const CliRun result =
-      run_cli({"demo", "--scene", "rigid", "--resolution", "2", "--methods-only", "--out", "blocker/out"});
+      run_cli({"run", "--json", "--out", "results.txt", "vf/good.csv", "scene", "ee/good.csv"});
   EXPECT_EQ(result.exit_code, 1);
-  EXPECT_NE(result.out.find("candidates/s"), std::string::npos);  // the report came first
-  EXPECT_NE(result.err.find("blocker"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("ee.csv:2"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("out of range"), std::string::npos) << result.err;
+  EXPECT_EQ(lines_of(result.out).size(), 2u);  // one JSON line per good file
+  const std::string results = read_file(path("results.txt"));
+  EXPECT_EQ(lines_of(results).size(), 5u) << results;
+  EXPECT_EQ(results.rfind("1,", 0), 0u) << results;  // the first query of vf/good.csv hits
+  EXPECT_TRUE(files_containing(".tmp-").empty());
+}
+
+// In process: every error is told, every good input keeps its report.
+TEST_F(CliTest, EveryBadInputIsToldAndEveryGoodOneReported) {
+  write_file(path("vf/good.csv"), query_csv({{vertex_face_hit, true}}));
+  write_file(path("vf/short.csv"), "1,1,2,1,3,1\n");  // 1 of 8 rows
+  write_file(path("vf/not-double.csv"), query_csv({{vertex_face_miss, false}}).replace(0, 4, "1,3,"));
+  write_file(path("ee/good.csv"), query_csv({{edge_edge_hit, true}, {edge_edge_miss, false}}));
+  RunSettings settings;
+  settings.inputs = {path("vf/good.csv"), path("vf/short.csv"), path("missing/vf.csv"),
+                     path("vf/not-double.csv"), path("ee/good.csv")};
+  settings.keep_results = true;
+  std::ostringstream errors;
+  const RunOutcome outcome = batchccd::cli::run_inputs(settings, errors);
+  EXPECT_TRUE(outcome.any_error);
+  ASSERT_EQ(outcome.reports.size(), 2u);
+  EXPECT_EQ(outcome.reports[0].results.size(), 1u);
+  EXPECT_EQ(outcome.reports[1].results.size(), 2u);
+  for (const char* bad : {"short.csv", "missing", "not-double.csv"})
+    EXPECT_NE(errors.str().find(bad), std::string::npos) << errors.str();
 }
 
 // ---- the shared data set ----------------------------------------------------------
 
+// The tool's own path over the reference data (the library's is tested in
+// test_shared_data.cpp): every file found, read and counted against its truth.
 TEST(CliSharedData, SampleQueriesAndScenesRunWithTruth) {
   const fs::path data = BATCHCCD_SHARED_DATA;
   if (!fs::exists(data / "sample-queries") || !fs::exists(data / "scenes")) {
@@ -833,7 +694,7 @@ TEST(CliSharedData, SampleQueriesAndScenesRunWithTruth) {
   EXPECT_EQ(outcome.reports.size(), query_files + 2 * scenes);
   for (const InputReport& report : outcome.reports) {
     ASSERT_TRUE(report.false_negatives.has_value()) << report.input;
-    // Conservative mode never misses a contact (DESIGN.md §3).
+    // Conservative mode never misses a contact.
     EXPECT_EQ(*report.false_negatives, 0) << report.input;
   }
 }

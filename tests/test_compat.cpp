@@ -140,10 +140,4 @@ TEST(MeshEdges, RejectsWhatTheVertexIdCallRejects) {
   EXPECT_THROW(batchccd::mesh_ccd(mesh.view(), {bad_face, no_pairs}), std::invalid_argument);
 }
 
-TEST(Version, StringMatchesTheNumbers) {
-  EXPECT_EQ(std::string(BATCHCCD_VERSION), std::to_string(BATCHCCD_VERSION_MAJOR) + "." +
-                                               std::to_string(BATCHCCD_VERSION_MINOR) + "." +
-                                               std::to_string(BATCHCCD_VERSION_PATCH));
-}
-
 }  // namespace

@@ -25,7 +25,7 @@
 #include "reference/inclusion_solver.hpp"
 #include "reference/reference.hpp"
 #include "reference/scaled_query.hpp"
-#include "run.hpp"
+#include "shared_data.hpp"
 
 namespace batchccd {
 namespace {
@@ -599,63 +599,52 @@ std::vector<LabeledQuery> shared_queries(std::size_t scene_stride) {
   return all;
 }
 
-cli::RunOutcome run_all_inputs(Mode mode) {
-  cli::RunSettings settings;
-  settings.inputs = {kData / "sample-queries"};
-  for (const auto& entry : std::filesystem::directory_iterator(kData / "scenes"))
-    if (entry.is_directory()) settings.inputs.push_back(entry.path());
-  settings.options.mode = mode;
-  settings.options.threads = 1;
-  settings.keep_results = true;
-  std::ostringstream errors;
-  cli::RunOutcome outcome = cli::run_inputs(settings, errors);
-  EXPECT_FALSE(outcome.any_error) << errors.str();
-  return outcome;
-}
-
-// `batchccd run --threads 1 --mode MODE` over all of ../shared/data, run once
-// per mode for the tests below.
-const cli::RunOutcome& run_shared_data(Mode mode) {
-  static std::map<Mode, cli::RunOutcome> runs;
+// Every input of ../shared/data with one thread in `mode`, run once per
+// mode for the tests below.
+const std::vector<testing::DataRun>& run_shared_data(Mode mode) {
+  static std::map<Mode, std::vector<testing::DataRun>> runs;
   auto run = runs.find(mode);
-  if (run == runs.end()) run = runs.emplace(mode, run_all_inputs(mode)).first;
+  if (run == runs.end()) {
+    Options options;
+    options.mode = mode;
+    options.threads = 1;
+    run = runs.emplace(mode, testing::run_shared_data(options)).first;
+  }
   return run->second;
 }
 
 class ExactSharedData : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!std::filesystem::is_directory(kData / "sample-queries") ||
-        !std::filesystem::is_directory(kData / "scenes"))
-      GTEST_SKIP() << kData << " is absent";
+    if (!testing::shared_data_present()) GTEST_SKIP() << testing::kSharedData << " is absent";
   }
 };
 
-// The acceptance test: `batchccd run --mode exact` over every input.
+// Exact mode over every input: no error against the files' truth.
 // Throughput against conservative mode and the escalations are printed for
 // the record (README, Results).
 TEST_F(ExactSharedData, NoFalsePositiveAndNoFalseNegative) {
-  const cli::RunOutcome& exact_run = run_shared_data(Mode::exact);
-  const cli::RunOutcome& conservative_run = run_shared_data(Mode::conservative);
-  ASSERT_FALSE(exact_run.reports.empty());
+  const auto& exact_run = run_shared_data(Mode::exact);
+  const auto& conservative_run = run_shared_data(Mode::conservative);
+  ASSERT_FALSE(exact_run.empty());
   std::int64_t queries = 0, escalations = 0;
   double exact_seconds = 0, conservative_seconds = 0, slowest = 0;
-  for (const cli::InputReport& report : exact_run.reports) {
-    ASSERT_TRUE(report.false_negatives.has_value()) << report.input;
-    EXPECT_EQ(*report.false_negatives, 0) << report.input << " " << to_string(report.kind);
-    EXPECT_EQ(*report.false_positives, 0) << report.input << " " << to_string(report.kind);
-    queries += report.queries;
-    escalations += report.exact_escalations;
-    exact_seconds += report.seconds;
-    slowest = std::max(slowest, report.max_query_seconds);
+  for (const testing::DataRun& run : exact_run) {
+    ASSERT_TRUE(run.truth.has_value()) << run.input;
+    EXPECT_EQ(run.false_negatives(), 0) << run.input << " " << to_string(run.kind);
+    EXPECT_EQ(run.false_positives(), 0) << run.input << " " << to_string(run.kind);
+    queries += static_cast<std::int64_t>(run.results.size());
+    escalations += run.counters.exact_escalations;
+    exact_seconds += run.seconds;
+    slowest = std::max(slowest, run.counters.max_query_seconds);
   }
-  ASSERT_EQ(conservative_run.reports.size(), exact_run.reports.size());
-  for (std::size_t r = 0; r < conservative_run.reports.size(); ++r) {
-    const cli::InputReport& report = conservative_run.reports[r];
-    conservative_seconds += report.seconds;
+  ASSERT_EQ(conservative_run.size(), exact_run.size());
+  for (std::size_t r = 0; r < conservative_run.size(); ++r) {
+    const testing::DataRun& run = conservative_run[r];
+    conservative_seconds += run.seconds;
     // Conservative mode escalates what exact mode does but the contacts
     // within tolerance.
-    EXPECT_LE(report.exact_escalations, exact_run.reports[r].exact_escalations) << report.input;
+    EXPECT_LE(run.counters.exact_escalations, exact_run[r].counters.exact_escalations) << run.input;
   }
   std::printf("[ record   ] exact: %lld queries, %lld escalations (%.2f %%), %.3f s vs "
               "conservative %.3f s (throughput %.2fx), slowest query %.2f ms (wall)\n",
@@ -669,14 +658,14 @@ TEST_F(ExactSharedData, NoFalsePositiveAndNoFalseNegative) {
 // (within 2^-40): conservative never reports a contact after it; fast and
 // cubic promise nothing but well-formed results.
 TEST_F(ExactSharedData, OtherModesToiAgainstTheExactFirstContact) {
-  const cli::RunOutcome& exact_run = run_shared_data(Mode::exact);
+  const auto& exact_run = run_shared_data(Mode::exact);
   for (Mode mode : {Mode::conservative, Mode::fast, Mode::cubic}) {
-    const cli::RunOutcome& run = run_shared_data(mode);
-    ASSERT_EQ(run.reports.size(), exact_run.reports.size());
+    const auto& run = run_shared_data(mode);
+    ASSERT_EQ(run.size(), exact_run.size());
     double latest_lead = 0;  // how much before the first contact conservative reports
-    for (std::size_t r = 0; r < run.reports.size(); ++r) {
-      const auto& results = run.reports[r].results;
-      const auto& exact_results = exact_run.reports[r].results;
+    for (std::size_t r = 0; r < run.size(); ++r) {
+      const auto& results = run[r].results;
+      const auto& exact_results = exact_run[r].results;
       ASSERT_EQ(results.size(), exact_results.size());
       for (std::size_t i = 0; i < results.size(); ++i) {
         const QueryResult& result = results[i];
@@ -688,7 +677,7 @@ TEST_F(ExactSharedData, OtherModesToiAgainstTheExactFirstContact) {
         EXPECT_LE(result.toi, 1.0);
         if (mode == Mode::conservative && exact_results[i].hit) {
           EXPECT_LE(result.toi, exact_results[i].toi + 0x1p-40)
-              << run.reports[r].input << " query " << i;
+              << run[r].input << " query " << i;
           latest_lead = std::max(latest_lead, exact_results[i].toi - result.toi);
         }
       }

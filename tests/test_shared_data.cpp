@@ -1,39 +1,32 @@
-// The benchmark data of ../shared/data through exactly the code path of
-// `batchccd run`. Conservative mode must never miss a collision; the other
-// modes must run and count their own errors honestly. False positives and
-// time per query are printed for the record, not asserted.
+// The benchmark data of ../shared/data through the library's readers and
+// batch calls. Conservative mode must never miss a collision; every mode's
+// counters must agree with its per-query results. False positives and time
+// per query are printed for the record, not asserted.
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <sstream>
+#include <cstdio>
 
-#include "run.hpp"
+#include "shared_data.hpp"
 
 namespace batchccd {
 namespace {
 
-const std::filesystem::path kData = BATCHCCD_SHARED_DATA;
+using testing::DataRun;
 
-cli::RunOutcome run_all_data(Mode mode) {
-  cli::RunSettings settings;
-  settings.inputs = {kData / "sample-queries"};
-  for (const auto& entry : std::filesystem::directory_iterator(kData / "scenes"))
-    if (entry.is_directory()) settings.inputs.push_back(entry.path());
-  settings.options.mode = mode;
-  std::ostringstream errors;
-  cli::RunOutcome outcome = cli::run_inputs(settings, errors);
-  EXPECT_FALSE(outcome.any_error) << errors.str();
-  return outcome;
+std::vector<DataRun> run_all_data(Mode mode) {
+  Options options;
+  options.mode = mode;
+  return testing::run_shared_data(options);
 }
 
-void record(const cli::RunOutcome& outcome, Mode mode) {
+void record(const std::vector<DataRun>& runs, Mode mode) {
   std::int64_t queries = 0, false_positives = 0, false_negatives = 0;
   double seconds = 0;
-  for (const cli::InputReport& report : outcome.reports) {
-    queries += report.queries;
-    false_positives += report.false_positives.value_or(0);
-    false_negatives += report.false_negatives.value_or(0);
-    seconds += report.seconds;
+  for (const DataRun& run : runs) {
+    queries += static_cast<std::int64_t>(run.results.size());
+    false_positives += run.false_positives();
+    false_negatives += run.false_negatives();
+    seconds += run.seconds;
   }
   std::printf("[ record   ] %s: %lld queries, %lld false positives, %lld false negatives, "
               "%.2f us per query\n",
@@ -42,38 +35,44 @@ void record(const cli::RunOutcome& outcome, Mode mode) {
               queries ? 1e6 * seconds / static_cast<double>(queries) : 0.0);
 }
 
+// What the counters say must be what the results say.
+void expect_counters_match_results(const DataRun& run) {
+  std::int64_t hits = 0;
+  for (const QueryResult& result : run.results) hits += result.hit;
+  EXPECT_EQ(run.counters.hits, hits) << run.input << " " << to_string(run.kind);
+  EXPECT_EQ(run.counters.candidates, static_cast<std::int64_t>(run.results.size())) << run.input;
+  EXPECT_EQ(run.counters.solved + run.counters.culled, run.counters.candidates) << run.input;
+}
+
 class SharedData : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!std::filesystem::is_directory(kData)) GTEST_SKIP() << kData << " is absent";
+    if (!testing::shared_data_present()) GTEST_SKIP() << testing::kSharedData << " is absent";
   }
 };
 
 TEST_F(SharedData, ConservativeModeMissesNoCollision) {
-  const cli::RunOutcome outcome = run_all_data(Mode::conservative);
-  ASSERT_FALSE(outcome.reports.empty());
-  for (const cli::InputReport& report : outcome.reports) {
-    ASSERT_TRUE(report.false_negatives.has_value()) << report.input << " has no ground truth";
-    EXPECT_EQ(*report.false_negatives, 0) << report.input << " " << to_string(report.kind);
-    EXPECT_EQ(report.queries, static_cast<std::int64_t>(report.results.size()));
+  const std::vector<DataRun> runs = run_all_data(Mode::conservative);
+  ASSERT_FALSE(runs.empty());
+  for (const DataRun& run : runs) {
+    ASSERT_TRUE(run.truth.has_value()) << run.input << " has no ground truth";
+    ASSERT_EQ(run.truth->size(), run.results.size()) << run.input;
+    EXPECT_EQ(run.false_negatives(), 0) << run.input << " " << to_string(run.kind);
+    expect_counters_match_results(run);
   }
-  record(outcome, Mode::conservative);
+  record(runs, Mode::conservative);
 }
 
-TEST_F(SharedData, BaselineModesRunAndCountTheirErrors) {
+TEST_F(SharedData, BaselineModesCountersMatchTheirResults) {
   for (Mode mode : {Mode::fast, Mode::cubic}) {
-    const cli::RunOutcome outcome = run_all_data(mode);
-    ASSERT_FALSE(outcome.reports.empty());
-    for (const cli::InputReport& report : outcome.reports) {
-      ASSERT_TRUE(report.false_negatives.has_value());
-      // The counts must add up with the per-query results.
-      std::int64_t hits = 0;
-      for (const QueryResult& result : report.results) hits += result.hit;
-      EXPECT_EQ(hits, report.hits) << report.input;
-      EXPECT_EQ(*report.positives - *report.false_negatives + *report.false_positives, report.hits)
-          << report.input;
+    const std::vector<DataRun> runs = run_all_data(mode);
+    ASSERT_FALSE(runs.empty());
+    for (const DataRun& run : runs) {
+      ASSERT_TRUE(run.truth.has_value()) << run.input;
+      expect_counters_match_results(run);
+      EXPECT_EQ(run.counters.exact_escalations, 0) << run.input << ": no exact stage in " << to_string(mode);
     }
-    record(outcome, mode);
+    record(runs, mode);
   }
 }
 

@@ -1,41 +1,52 @@
+#include "batchccd/names.hpp"
+
 #include <algorithm>
 
 #include "batchccd/batch.hpp"
-#include "batchccd/options.hpp"
-#include "batchccd/query.hpp"
 
 namespace batchccd {
+namespace {
 
-const char* to_string(Kind kind) {
-  switch (kind) {
-    case Kind::vertex_face: return "vf";
-    case Kind::edge_edge: return "ee";
-    case Kind::vertex_edge: return "ve";
-    case Kind::vertex_vertex: return "vv";
-  }
+constexpr EnumName<Kind> kKinds[] = {{"vf", Kind::vertex_face},
+                                     {"ee", Kind::edge_edge},
+                                     {"ve", Kind::vertex_edge},
+                                     {"vv", Kind::vertex_vertex}};
+constexpr EnumName<Mode> kModes[] = {{"conservative", Mode::conservative},
+                                     {"fast", Mode::fast},
+                                     {"cubic", Mode::cubic},
+                                     {"exact", Mode::exact}};
+constexpr EnumName<Isa> kIsas[] = {{"auto", Isa::automatic}, {"scalar", Isa::scalar},
+                                   {"sse4", Isa::sse4},      {"avx2", Isa::avx2},
+                                   {"avx512", Isa::avx512}};
+
+// The table's names are literals: .data() is null-terminated.
+template <class Enum>
+const char* name_in(std::span<const EnumName<Enum>> table, Enum value) {
+  for (const EnumName<Enum>& entry : table)
+    if (entry.value == value) return entry.name.data();
   return "?";
 }
 
-const char* to_string(Mode mode) {
-  switch (mode) {
-    case Mode::conservative: return "conservative";
-    case Mode::fast: return "fast";
-    case Mode::cubic: return "cubic";
-    case Mode::exact: return "exact";
-  }
-  return "?";
+template <class Enum>
+std::optional<Enum> value_in(std::span<const EnumName<Enum>> table, std::string_view name) {
+  for (const EnumName<Enum>& entry : table)
+    if (entry.name == name) return entry.value;
+  return std::nullopt;
 }
 
-const char* to_string(Isa isa) {
-  switch (isa) {
-    case Isa::automatic: return "auto";
-    case Isa::scalar: return "scalar";
-    case Isa::sse4: return "sse4";
-    case Isa::avx2: return "avx2";
-    case Isa::avx512: return "avx512";
-  }
-  return "?";
-}
+}  // namespace
+
+std::span<const EnumName<Kind>> kind_names() { return kKinds; }
+std::span<const EnumName<Mode>> mode_names() { return kModes; }
+std::span<const EnumName<Isa>> isa_names() { return kIsas; }
+
+const char* to_string(Kind kind) { return name_in(kind_names(), kind); }
+const char* to_string(Mode mode) { return name_in(mode_names(), mode); }
+const char* to_string(Isa isa) { return name_in(isa_names(), isa); }
+
+std::optional<Kind> kind_from_string(std::string_view name) { return value_in(kind_names(), name); }
+std::optional<Mode> mode_from_string(std::string_view name) { return value_in(mode_names(), name); }
+std::optional<Isa> isa_from_string(std::string_view name) { return value_in(isa_names(), name); }
 
 Counters& Counters::operator+=(const Counters& other) {
   candidates += other.candidates;

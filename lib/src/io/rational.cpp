@@ -1,39 +1,25 @@
 // Decimal rationals of any length to the exact double they denote
 // (DESIGN.md §5: every coordinate of the data is num / 2^k with |num| < 2^53).
 
-#include <gmp.h>
-
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "batchccd/io.hpp"
+#include "exact/integer.hpp"
 #include "io/text_input.hpp"
 
 namespace batchccd {
 
 namespace {
 
+using exact::Integer;
 using io_detail::all_digits;
 using io_detail::in_quotes;
 using io_detail::trim;
 
-// Owns one GMP integer.
-class BigInteger {
- public:
-  BigInteger() { mpz_init(value_); }
-  ~BigInteger() { mpz_clear(value_); }
-  BigInteger(const BigInteger&) = delete;
-  BigInteger& operator=(const BigInteger&) = delete;
-  mpz_ptr get() { return value_; }
-  mpz_srcptr get() const { return value_; }
-
- private:
-  mpz_t value_;
-};
-
 // Parses [+-]digits; GMP's own parser would also accept inner whitespace.
-void parse_decimal(std::string_view text, const char* role, BigInteger& out) {
+void parse_decimal(std::string_view text, const char* role, Integer& out) {
   const std::string_view trimmed = trim(text);
   std::string_view digits = trimmed;
   const bool negative = !digits.empty() && digits.front() == '-';
@@ -56,15 +42,15 @@ constexpr unsigned long significand_bits = 53;
 }  // namespace
 
 double exact_double_from_rational(std::string_view numerator, std::string_view denominator) {
-  BigInteger num;
-  BigInteger den;
+  Integer num;
+  Integer den;
   parse_decimal(numerator, "numerator", num);
   parse_decimal(denominator, "denominator", den);
   const std::string value = fraction_text(numerator, denominator);
   if (mpz_sgn(den.get()) <= 0) throw std::invalid_argument(value + ": the denominator must be positive");
   if (mpz_sgn(num.get()) == 0) return 0.0;
 
-  BigInteger divisor;
+  Integer divisor;
   mpz_gcd(divisor.get(), num.get(), den.get());
   mpz_divexact(num.get(), num.get(), divisor.get());
   mpz_divexact(den.get(), den.get(), divisor.get());

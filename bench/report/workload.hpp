@@ -16,7 +16,9 @@
 // of candidates in a fixed order, either raw queries of one kind or a mesh
 // with its candidate lists (vertex-face first, then edge-edge, the order of
 // mesh_ccd's results), with ground truth when the input has it.
-namespace batchccd::cli {
+namespace batchccd::bench {
+
+using cli::FoundInput;
 
 struct RawWorkload {
   Kind kind = Kind::vertex_face;
@@ -50,4 +52,4 @@ struct Workload {
 // InputError (naming file and line) on bad input.
 Workload read_workload(const FoundInput& input, const std::optional<Kind>& fallback_kind);
 
-}  // namespace batchccd::cli
+}  // namespace batchccd::bench

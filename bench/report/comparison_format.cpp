@@ -3,12 +3,16 @@
 #include <algorithm>
 #include <ostream>
 
-#include "report_format.hpp"
-#include "svg_plot.hpp"
 #include "text_output.hpp"
 
-namespace batchccd::cli {
+namespace batchccd::bench {
 namespace {
+
+using cli::fixed;
+using cli::general;
+using cli::print_aligned;
+using cli::round_trip_decimal;
+using cli::TableColumn;
 
 constexpr TableColumn kColumns[] = {
     {"method", false},   {"seconds", true},   {"candidates/s", true}, {"vs cubic", true},
@@ -63,18 +67,4 @@ void write_comparison_csv(std::ostream& out,
   }
 }
 
-std::string comparison_svg(std::string_view title, const std::vector<MethodTally>& tallies) {
-  PlotPanel decisions{"wrong decisions (false negatives + false positives)", "run time [s]",
-                      "wrong decisions", {}};
-  PlotPanel toi{"largest TOI error against exact mode", "run time [s]", "TOI error (fraction of the step)",
-                {}};
-  for (const MethodTally& t : tallies) {
-    const std::string label(name_of(t.method));
-    decisions.points.push_back(
-        {label, t.seconds, static_cast<double>(t.false_negatives + t.false_positives)});
-    toi.points.push_back({label, t.seconds, t.toi_error_max});
-  }
-  return scatter_svg(title, {decisions, toi});
-}
-
-}  // namespace batchccd::cli
+}  // namespace batchccd::bench

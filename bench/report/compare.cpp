@@ -12,7 +12,7 @@
 
 #include "peers/fcl_peer.hpp"
 
-namespace batchccd::cli {
+namespace batchccd::bench {
 namespace {
 
 struct MethodEntry {
@@ -181,4 +181,4 @@ double MethodTally::toi_error_mean() const {
   return toi_compared > 0 ? toi_error_sum / static_cast<double>(toi_compared) : 0.0;
 }
 
-}  // namespace batchccd::cli
+}  // namespace batchccd::bench

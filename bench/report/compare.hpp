@@ -11,7 +11,7 @@
 
 // The methods the comparison commands (demo, report) set side by side, and
 // what each gets wrong against ground truth, summed over workloads.
-namespace batchccd::cli {
+namespace batchccd::bench {
 
 enum class Method {
   exact,         // Mode::exact
@@ -70,4 +70,4 @@ struct MethodTally {
 // Decisions of a run, as ground truth (exact mode's, for generated scenes).
 std::vector<bool> decisions(const MethodRun& run);
 
-}  // namespace batchccd::cli
+}  // namespace batchccd::bench

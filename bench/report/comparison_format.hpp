@@ -2,15 +2,14 @@
 
 #include <iosfwd>
 #include <string>
-#include <string_view>
 #include <utility>
 #include <vector>
 
 #include "compare.hpp"
 
-// How the comparison commands show their tallies: an aligned table, CSV and
-// an SVG plot of error against run time.
-namespace batchccd::cli {
+// How the comparison commands show their tallies: an aligned table and CSV
+// (plot.hpp draws the CSV).
+namespace batchccd::bench {
 
 // One row per method: seconds, candidates/s, speed-up against the cubic
 // row (when there is one), cull ratio, false negatives and positives, TOI
@@ -22,8 +21,4 @@ void print_comparison(std::ostream& out, const std::vector<MethodTally>& tallies
 void write_comparison_csv(std::ostream& out,
                           const std::vector<std::pair<std::string, MethodTally>>& rows);
 
-// Two panels, one point per method: wrong decisions (false negatives + false
-// positives) and the largest TOI error, each against run time.
-std::string comparison_svg(std::string_view title, const std::vector<MethodTally>& tallies);
-
-}  // namespace batchccd::cli
+}  // namespace batchccd::bench

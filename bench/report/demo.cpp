@@ -11,13 +11,20 @@
 #include "compare.hpp"
 #include "comparison_format.hpp"
 #include "extreme_suite.hpp"
-#include "names.hpp"
+#include "peers/fcl_peer.hpp"
+#include "plot.hpp"
 #include "scenes.hpp"
 #include "text_output.hpp"
 #include "workload.hpp"
 
-namespace batchccd::cli {
+namespace batchccd::bench {
 namespace {
+
+using cli::FoundInput;
+using cli::TableColumn;
+using cli::fixed;
+using cli::print_aligned;
+using cli::write_file_atomically;
 
 // The demo's default sizes, chosen so that the whole demo takes well under
 // a minute on 2 cores (about 35 s, every method timed 3 times): the
@@ -191,24 +198,46 @@ class Report {
   std::string text_;
 };
 
+// methods.csv, plot.gp and (gnuplot permitting) plot.png; report.txt when
+// there is a text. A missing gnuplot is said, not an error.
 void write_outputs(const std::filesystem::path& directory, const std::string& title,
                    const std::vector<std::pair<std::string, MethodTally>>& csv_rows,
-                   const std::vector<MethodTally>& totals, const std::string* text,
-                   std::ostream& out) {
+                   const std::string* text, std::ostream& out) {
   std::filesystem::create_directories(directory);
-  if (text) write_file_atomically(directory / "report.txt", [&](std::ostream& o) { o << *text; });
+  std::vector<std::filesystem::path> written;
+  if (text) {
+    write_file_atomically(directory / "report.txt", [&](std::ostream& o) { o << *text; });
+    written.push_back(directory / "report.txt");
+  }
   write_file_atomically(directory / "methods.csv",
                         [&](std::ostream& o) { write_comparison_csv(o, csv_rows); });
-  write_file_atomically(directory / "plot.svg",
-                        [&](std::ostream& o) { o << comparison_svg(title, totals); });
-  out << "wrote " << (text ? (directory / "report.txt").string() + ", " : "")
-      << (directory / "methods.csv").string() << ", " << (directory / "plot.svg").string() << '\n';
+  written.push_back(directory / "methods.csv");
+  // The script names the files relative to the directory gnuplot runs in.
+  write_file_atomically(directory / "plot.gp", [&](std::ostream& o) {
+    std::vector<std::string> methods;
+    for (const Method method : compared_methods()) methods.emplace_back(name_of(method));
+    o << plot_script(title, "methods.csv", "plot.png", methods);
+  });
+  std::string note;
+  if (const std::optional<std::filesystem::path> gnuplot = find_gnuplot()) {
+    run_gnuplot(*gnuplot, directory, "plot.gp");
+    written.push_back(directory / "plot.png");
+  } else {
+    note = "plot.png not drawn: gnuplot not found (apt-get install gnuplot-nox); "
+           "plot.gp draws it from methods.csv\n";
+  }
+  written.push_back(directory / "plot.gp");
+  out << "wrote";
+  for (std::size_t i = 0; i < written.size(); ++i) out << (i ? ", " : " ") << written[i].string();
+  out << '\n' << note;
 }
 
 std::string method_legend() {
   std::ostringstream legend;
   for (const Method method : compared_methods())
     legend << "  " << std::left << std::setw(13) << name_of(method) << description_of(method) << '\n';
+  if (!peers::fcl_available())
+    legend << "  " << std::left << std::setw(13) << "fcl" << "not available: built without FCL (libfcl-dev)\n";
   return legend.str();
 }
 
@@ -237,11 +266,11 @@ void run_demo(const DemoSettings& settings, std::ostream& out, std::ostream* ter
   progress.clear();
 
   std::ostringstream header;
-  header << "batchccd demo: built-in " << scene.description << '\n'
+  header << "batchccd_report demo: built-in " << scene.description << '\n'
          << "  " << millions(vertex_face + edge_edge) << " candidates (vf " << millions(vertex_face)
          << ", ee " << millions(edge_edge) << ") from a swept-box broad phase ("
          << fixed(broad_phase_seconds, 1) << " s with the scene, not counted below)\n"
-         << "  isa " << name_of(resolve_isa(Isa::automatic)) << ", threads "
+         << "  isa " << to_string(resolve_isa(Isa::automatic)) << ", threads "
          << (settings.threads > 0 ? std::to_string(settings.threads) : "all") << "; ground truth and TOI reference: exact mode\n\n"
          << "Methods\n" << method_legend() << '\n';
   std::ostringstream methods;
@@ -264,9 +293,8 @@ void run_demo(const DemoSettings& settings, std::ostream& out, std::ostream* ter
   }
 
   std::vector<std::pair<std::string, MethodTally>> csv_rows;
-  for (const MethodTally& t : tallies) csv_rows.emplace_back(scene.description, t);
-  write_outputs(settings.out, "batchccd demo: " + scene.description, csv_rows, tallies,
-                &report.text(), out);
+  for (const MethodTally& t : tallies) csv_rows.emplace_back("total", t);  // one workload: the total
+  write_outputs(settings.out, "batchccd_report demo: " + scene.description, csv_rows, &report.text(), out);
 }
 
 bool run_report(const ReportSettings& settings, std::ostream& out, std::ostream& errors,
@@ -279,7 +307,7 @@ bool run_report(const ReportSettings& settings, std::ostream& out, std::ostream&
   for (const auto& input : settings.inputs) {
     std::vector<FoundInput> found;
     try {
-      found = find_inputs(input, settings.kind, errors);
+      found = cli::find_inputs(input, settings.kind, errors);
     } catch (const std::exception& error) {
       errors << "batchccd: error: " << error.what() << '\n';
       all_read = false;
@@ -304,7 +332,7 @@ bool run_report(const ReportSettings& settings, std::ostream& out, std::ostream&
     }
   }
   progress.clear();
-  out << "batchccd report: " << csv_rows.size() / std::max<std::size_t>(1, totals.size())
+  out << "batchccd_report report: " << csv_rows.size() / std::max<std::size_t>(1, totals.size())
       << " inputs, " << candidates << " candidates; ground truth from the files"
       << (without_truth > 0 ? " (exact mode's decisions for " + std::to_string(without_truth) +
                                   " candidates without)"
@@ -313,8 +341,8 @@ bool run_report(const ReportSettings& settings, std::ostream& out, std::ostream&
       << method_legend() << '\n';
   print_comparison(out, totals);
   for (const MethodTally& t : totals) csv_rows.emplace_back("total", t);
-  if (settings.out) write_outputs(*settings.out, "batchccd report", csv_rows, totals, nullptr, out);
+  if (settings.out) write_outputs(*settings.out, "batchccd_report report", csv_rows, nullptr, out);
   return all_read;
 }
 
-}  // namespace batchccd::cli
+}  // namespace batchccd::bench

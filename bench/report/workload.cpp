@@ -1,9 +1,8 @@
 #include "workload.hpp"
 
 #include "batchccd/io.hpp"
-#include "broad_phase.hpp"
 
-namespace batchccd::cli {
+namespace batchccd::bench {
 
 std::size_t Workload::size() const {
   if (const auto* raw = std::get_if<RawWorkload>(&source)) return raw->queries.size();
@@ -21,8 +20,8 @@ Query Workload::query_at(std::size_t i) const {
   if (const auto* raw = std::get_if<RawWorkload>(&source)) return raw->queries[i];
   const auto& mesh = std::get<MeshWorkload>(source);
   const std::size_t vertex_face = mesh.candidates.vertex_face.size();
-  return i < vertex_face ? scenes::vertex_face_query(mesh.view(), mesh.candidates.vertex_face[i])
-                         : scenes::edge_edge_query(mesh.view(), mesh.candidates.edge_edge[i - vertex_face]);
+  return i < vertex_face ? vertex_face_query(mesh.view(), mesh.candidates.vertex_face[i])
+                         : edge_edge_query(mesh.view(), mesh.candidates.edge_edge[i - vertex_face]);
 }
 
 BatchResult Workload::run(const Options& options) const {
@@ -44,7 +43,7 @@ Workload read_workload(const FoundInput& input, const std::optional<Kind>& fallb
   Workload workload;
   workload.name = input.path.string();
   if (!input.is_scene) {
-    const Kind kind = kind_of_query_file(input.path, fallback_kind);
+    const Kind kind = cli::kind_of_query_file(input.path, fallback_kind);
     QueryFile file = read_query_csv(input.path, kind);
     workload.source = RawWorkload{kind, std::move(file.queries)};
     workload.truth = std::move(file.truth);
@@ -65,4 +64,4 @@ Workload read_workload(const FoundInput& input, const std::optional<Kind>& fallb
   return workload;
 }
 
-}  // namespace batchccd::cli
+}  // namespace batchccd::bench

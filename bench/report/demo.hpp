@@ -8,10 +8,10 @@
 
 #include "batchccd/batchccd.hpp"
 
-// `batchccd demo` and `batchccd report` without their command lines: run
+// `batchccd_report demo` and `batchccd_report report` without their command lines: run
 // every method (compare.hpp) on a built-in scene or on input files, print
-// the comparison, and write it as CSV and SVG.
-namespace batchccd::cli {
+// the comparison, and write it as CSV and a gnuplot picture.
+namespace batchccd::bench {
 
 enum class BuiltinScene { cloth, rigid };
 
@@ -19,7 +19,7 @@ struct DemoSettings {
   BuiltinScene scene = BuiltinScene::cloth;
   int resolution = 0;  // 0: the scene's demo size (about 35 s on 2 cores)
   int threads = 0;     // 0: all
-  std::filesystem::path out = "batchccd-demo";  // report.txt, methods.csv, plot.svg
+  std::filesystem::path out = "batchccd-demo";  // report.txt, methods.csv, plot.gp, plot.png
   bool sections = true;  // also the costs and the stiff and extreme suite
 };
 
@@ -32,7 +32,7 @@ struct ReportSettings {
   std::vector<std::filesystem::path> inputs;  // as `batchccd run` takes them
   std::optional<Kind> kind;                   // of query files whose path names none
   int threads = 0;
-  std::optional<std::filesystem::path> out;   // methods.csv and plot.svg there
+  std::optional<std::filesystem::path> out;   // methods.csv, plot.gp, plot.png there
 };
 
 // `batchccd report`: the comparison over input files, ground truth from the
@@ -42,4 +42,4 @@ struct ReportSettings {
 bool run_report(const ReportSettings& settings, std::ostream& out, std::ostream& errors,
                 std::ostream* progress);
 
-}  // namespace batchccd::cli
+}  // namespace batchccd::bench

@@ -1,0 +1,332 @@
+// The benchmark report (bench/report): the comparison's tallies, and
+// `batchccd_report demo` and `report` through the built executable: tables,
+// methods.csv, and the plot gnuplot draws from it (or the note when there is
+// no gnuplot).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "compare.hpp"
+#include "peers/fcl_peer.hpp"
+#include "plot.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The vertex falls through the static triangle at t = 1/2 (truth 1), then
+// stays far from it (truth 0); the same for two edges. Coordinates in quarters.
+const std::string vertex_face_hit_and_miss =
+    "1,4,1,4,4,4,1\n0,4,0,4,0,4,1\n4,4,0,4,0,4,1\n0,4,4,4,0,4,1\n"
+    "1,4,1,4,-4,4,1\n0,4,0,4,0,4,1\n4,4,0,4,0,4,1\n0,4,4,4,0,4,1\n"
+    "40,4,40,4,40,4,0\n0,4,0,4,0,4,0\n4,4,0,4,0,4,0\n0,4,4,4,0,4,0\n"
+    "40,4,40,4,40,4,0\n0,4,0,4,0,4,0\n4,4,0,4,0,4,0\n0,4,4,4,0,4,0\n";
+const std::string edge_edge_hit_and_miss =
+    "2,4,-4,4,4,4,1\n2,4,4,4,4,4,1\n0,4,0,4,0,4,1\n4,4,0,4,0,4,1\n"
+    "2,4,-4,4,-4,4,1\n2,4,4,4,-4,4,1\n0,4,0,4,0,4,1\n4,4,0,4,0,4,1\n"
+    "2,4,-4,4,40,4,0\n2,4,4,4,40,4,0\n0,4,0,4,0,4,0\n4,4,0,4,0,4,0\n"
+    "2,4,-4,4,40,4,0\n2,4,4,4,40,4,0\n0,4,0,4,0,4,0\n4,4,0,4,0,4,0\n";
+
+void write_file(const fs::path& path, const std::string& content) {
+  fs::create_directories(path.parent_path());
+  std::ofstream(path, std::ios::binary) << content;
+}
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// A small scene: triangle 0-1-2 with vertex 3 falling through it; edge 4-5
+// sweeping down through edge 0-1; vertices 6, 7 far away and still.
+void write_scene(const fs::path& directory) {
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 8\nproperty double x\nproperty double y\n"
+      "property double z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string fixed_vertices = "0 0 0\n1 0 0\n0 1 0\n";
+  const std::string far_vertices = "10 10 10\n11 10 10\n";
+  write_file(directory / "t0.ply", header + fixed_vertices + "0.25 0.25 1\n0.5 -1 1\n0.5 1 1\n" +
+                                       far_vertices + "3 0 1 2\n");
+  write_file(directory / "t1.ply", header + fixed_vertices +
+                                       "0.25 0.25 -1\n0.5 -1 -1\n0.5 1 -1\n" + far_vertices +
+                                       "3 0 1 2\n");
+  write_file(directory / "vf.csv", "3,0\n6,0\n");
+  write_file(directory / "vf_truth.txt", "1\n0\n");
+  write_file(directory / "ee.csv", "4,5,0,1\n4,5,6,7\n");
+  write_file(directory / "ee_truth.txt", "1\n0\n");
+}
+
+struct ReportRun {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string shell_quoted(const std::string& text) {
+  std::string quoted = "'";
+  for (char character : text) quoted += character == '\'' ? std::string("'\\''") : std::string(1, character);
+  return quoted + "'";
+}
+
+class ReportTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    temporary_ = fs::temp_directory_path() /
+                 ("batchccd_report_" + std::string(test->name()) + "_" + std::to_string(::getpid()));
+    fs::remove_all(temporary_);
+    fs::create_directories(temporary_);
+  }
+  void TearDown() override { fs::remove_all(temporary_); }
+
+  fs::path path(const std::string& relative) const { return temporary_ / relative; }
+
+  // Runs `batchccd_report ARGUMENTS` in the temporary directory, with
+  // `environment` ("NAME=value" words) added to its environment.
+  ReportRun run_report(const std::vector<std::string>& arguments,
+                 const std::vector<std::string>& environment = {}) const {
+    std::vector<std::string> words = {"cd", shell_quoted(temporary_.string()), "&&", "env"};
+    for (const std::string& setting : environment) words.push_back(shell_quoted(setting));
+    words.push_back(shell_quoted(BATCHCCD_REPORT_PATH));
+    for (const std::string& argument : arguments) words.push_back(shell_quoted(argument));
+    words.insert(words.end(), {">", shell_quoted((temporary_ / "stdout.txt").string()), "2>",
+                               shell_quoted((temporary_ / "stderr.txt").string())});
+    std::string command;
+    for (const std::string& word : words) (command += word) += ' ';
+    const int status = std::system(command.c_str());
+    ReportRun result;
+    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    result.out = read_file(temporary_ / "stdout.txt");
+    result.err = read_file(temporary_ / "stderr.txt");
+    fs::remove(temporary_ / "stdout.txt");
+    fs::remove(temporary_ / "stderr.txt");
+    return result;
+  }
+
+  fs::path temporary_;
+};
+
+bool is_png(const fs::path& file) { return read_file(file).rfind("\x89PNG\r\n\x1a\n", 0) == 0; }
+
+// methods.csv as rows of named fields.
+std::vector<std::map<std::string, std::string>> read_csv(const fs::path& file) {
+  const std::vector<std::string> lines = lines_of(read_file(file));
+  std::vector<std::map<std::string, std::string>> rows;
+  if (lines.empty()) return rows;
+  const auto split = [](const std::string& line) {
+    std::vector<std::string> cells;
+    std::string cell;
+    bool quoted = false;
+    for (const char c : line) {
+      if (c == '"') {
+        quoted = !quoted;
+      } else if (c == ',' && !quoted) {
+        cells.push_back(cell);
+        cell.clear();
+      } else {
+        cell += c;
+      }
+    }
+    cells.push_back(cell);
+    return cells;
+  };
+  const std::vector<std::string> header = split(lines.front());
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const std::vector<std::string> cells = split(lines[i]);
+    EXPECT_EQ(cells.size(), header.size()) << lines[i];
+    std::map<std::string, std::string> row;
+    for (std::size_t c = 0; c < std::min(cells.size(), header.size()); ++c) row[header[c]] = cells[c];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+std::vector<std::string> method_names() {
+  std::vector<std::string> names;
+  for (const auto method : batchccd::bench::compared_methods())
+    names.emplace_back(batchccd::bench::name_of(method));
+  return names;
+}
+
+TEST(ReportCompare, TallyCountsErrorsAgainstTruthAndToiAgainstTheReference) {
+  using batchccd::QueryResult;
+  batchccd::bench::MethodRun run;
+  run.results = {{true, 0.5}, {false}, {true, 0.25}, {true, 0.0}};
+  run.seconds = 2;
+  run.culled = 1;
+  const std::vector<bool> truth = {true, true, true, false};
+  const std::vector<QueryResult> reference = {{true, 0.5}, {true, 0.1}, {true, 0.3}, {false}};
+  batchccd::bench::MethodTally tally;
+  tally.add(run, truth, reference);
+  EXPECT_EQ(tally.candidates, 4);
+  EXPECT_EQ(tally.false_negatives, 1);
+  EXPECT_EQ(tally.false_positives, 1);
+  EXPECT_EQ(tally.toi_compared, 2);
+  EXPECT_DOUBLE_EQ(tally.toi_error_max, 0.05);
+  EXPECT_DOUBLE_EQ(tally.toi_error_mean(), 0.025);
+  EXPECT_DOUBLE_EQ(tally.candidates_per_second(), 2);
+  EXPECT_DOUBLE_EQ(tally.cull_ratio(), 0.25);
+  batchccd::bench::MethodTally twice = tally;
+  twice += tally;
+  EXPECT_EQ(twice.false_negatives, 2);
+  EXPECT_DOUBLE_EQ(twice.toi_error_max, 0.05);
+  EXPECT_DOUBLE_EQ(twice.toi_error_mean(), 0.025);
+  EXPECT_THROW(tally.add(run, {true}, reference), std::logic_error);
+}
+
+TEST_F(ReportTest, ReportComparesEveryMethodAgainstTheFilesTruth) {
+  write_scene(path("data/scene"));
+  write_file(path("data/vf/q.csv"), vertex_face_hit_and_miss);
+  write_file(path("data/ee/q.csv"), edge_edge_hit_and_miss);
+  const ReportRun result = run_report({"report", "--threads", "2", "--out", "out", "data"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  for (const std::string& method : method_names())
+    EXPECT_NE(result.out.find("\n" + method + " "), std::string::npos) << method << "\n" << result.out;
+  const auto rows = read_csv(path("out/methods.csv"));
+  ASSERT_EQ(rows.size(), 4 * method_names().size());  // 3 inputs and the totals, per method
+  for (const auto& row : rows) {
+    // The inputs hold clean hits and clear misses: the certified modes get all right.
+    if (row.at("method") == "exact" || row.at("method") == "conservative") {
+      EXPECT_EQ(row.at("false_negatives"), "0") << row.at("input");
+      EXPECT_EQ(row.at("false_positives"), "0") << row.at("input");
+    }
+    if (row.at("input") == "total") {
+      EXPECT_EQ(row.at("candidates"), "8");
+    }
+  }
+  const std::string script = read_file(path("out/plot.gp"));
+  EXPECT_NE(script.find("'methods.csv'"), std::string::npos) << script;
+  EXPECT_NE(script.find("set logscale xy"), std::string::npos) << script;
+  if (batchccd::bench::find_gnuplot()) {
+    EXPECT_TRUE(is_png(path("out/plot.png")));
+  } else {
+    EXPECT_NE(result.out.find("gnuplot not found"), std::string::npos) << result.out;
+  }
+  if (!batchccd::peers::fcl_available()) {
+    EXPECT_NE(result.out.find("not available: built without FCL"), std::string::npos) << result.out;
+  }
+}
+
+TEST_F(ReportTest, ReportGoesOnPastABadInputAndSaysSo) {
+  write_file(path("vf/q.csv"), vertex_face_hit_and_miss);
+  write_file(path("vf/bad.csv"), "1,1,2\n");
+  const ReportRun result = run_report({"report", "vf/bad.csv", "missing", "vf/q.csv"});
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.err.find("bad.csv:1"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("missing"), std::string::npos) << result.err;
+  EXPECT_NE(result.out.find("1 inputs, 2 candidates"), std::string::npos) << result.out;
+}
+
+TEST_F(ReportTest, DemoAndReportCommandLines) {
+  for (const auto& arguments : std::vector<std::vector<std::string>>{
+           {"demo", "--scene", "sphere"}, {"demo", "--resolution", "0"}, {"demo", "extra"},
+           {"demo", "--methods-only=yes"}, {"report"}, {"report", "--threads", "x", "a"},
+           {"report", "--bogus", "a"}, {"report", "--kind", "xy", "a"}}) {
+    const ReportRun result = run_report(arguments);
+    EXPECT_EQ(result.exit_code, 2) << arguments[1];
+    EXPECT_NE(result.err.find("batchccd_report " + arguments[0]), std::string::npos) << result.err;
+    EXPECT_TRUE(result.out.empty()) << result.out;
+  }
+  for (const std::string command : {"demo", "report"}) {
+    const ReportRun help = run_report({command, "--help"});
+    EXPECT_EQ(help.exit_code, 0);
+    EXPECT_NE(help.out.find("batchccd_report " + command), std::string::npos) << help.out;
+    EXPECT_NE(help.out.find("--threads"), std::string::npos);
+  }
+}
+
+// A small cloth: every method runs, exact mode is the truth, and the
+// certified mode misses nothing.
+TEST_F(ReportTest, DemoPrintsTheTableAndWritesReportCsvAndPlot) {
+  const ReportRun result = run_report({"demo", "--resolution", "24", "--threads", "2", "--out", "out"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_TRUE(result.err.empty()) << "progress must stay off a non-terminal: " << result.err;
+  for (const char* section : {"candidates/s", "What a call pays for", "Stiff and extreme"})
+    EXPECT_NE(result.out.find(section), std::string::npos) << section;
+  const bool gnuplot = batchccd::bench::find_gnuplot().has_value();
+  EXPECT_EQ(read_file(path("out/report.txt")) + "wrote out/report.txt, out/methods.csv, " +
+                (gnuplot ? "out/plot.png, " : "") + "out/plot.gp\n" +
+                (gnuplot ? "" : "plot.png not drawn: gnuplot not found (apt-get install gnuplot-nox); "
+                                "plot.gp draws it from methods.csv\n"),
+            result.out);
+  const auto rows = read_csv(path("out/methods.csv"));
+  ASSERT_EQ(rows.size(), method_names().size());
+  std::map<std::string, std::map<std::string, std::string>> by_method;
+  for (const auto& row : rows) by_method[row.at("method")] = row;
+  EXPECT_EQ(by_method.at("exact").at("false_negatives"), "0");
+  EXPECT_EQ(by_method.at("exact").at("false_positives"), "0");
+  EXPECT_EQ(by_method.at("exact").at("toi_error_max"), "0");
+  EXPECT_EQ(by_method.at("conservative").at("false_negatives"), "0");
+  EXPECT_GT(std::stod(by_method.at("conservative").at("cull_ratio")), 0.9);
+  EXPECT_EQ(by_method.at("cubic").at("culled"), "0");
+  // The scene has contacts: TOIs were compared.
+  EXPECT_GT(std::stol(by_method.at("conservative").at("toi_compared")), 0);
+  if (gnuplot) {
+    EXPECT_TRUE(is_png(path("out/plot.png")));
+  }
+}
+
+TEST_F(ReportTest, DemoIntoAnUnwritableDirectoryIsAnErrorAfterTheReport) {
+  write_file(path("blocker"), "a file where the directory should go");
+  const ReportRun result =
+      run_report({"demo", "--scene", "rigid", "--resolution", "2", "--methods-only", "--out", "blocker/out"});
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.out.find("candidates/s"), std::string::npos);  // the report came first
+  EXPECT_NE(result.err.find("blocker"), std::string::npos) << result.err;
+}
+
+// Without gnuplot the report says so and still writes the CSV and the script.
+TEST_F(ReportTest, WithoutGnuplotTheCsvAndTheScriptAreStillWritten) {
+  write_file(path("vf/q.csv"), vertex_face_hit_and_miss);
+  const ReportRun result = run_report({"report", "--out", "out", "vf/q.csv"}, {"PATH=/nonexistent"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("plot.png not drawn: gnuplot not found"), std::string::npos) << result.out;
+  EXPECT_FALSE(fs::exists(path("out/plot.png")));
+  EXPECT_FALSE(read_file(path("out/methods.csv")).empty());
+  EXPECT_FALSE(read_file(path("out/plot.gp")).empty());
+}
+
+// The script as gnuplot runs it: a PNG from a CSV with every kind of row,
+// zeros on the log axes included.
+TEST(ReportPlot, GnuplotDrawsTheCsv) {
+  const auto gnuplot = batchccd::bench::find_gnuplot();
+  if (!gnuplot) GTEST_SKIP() << "no gnuplot on PATH";
+  const fs::path directory = fs::temp_directory_path() / ("batchccd_plot_" + std::to_string(::getpid()));
+  fs::remove_all(directory);
+  write_file(directory / "methods.csv",
+             "input,method,seconds,candidates,candidates_per_second,culled,cull_ratio,false_negatives,"
+             "false_positives,toi_compared,toi_error_max,toi_error_mean\n"
+             "a.csv,exact,0.5,10,20,9,0.9,0,0,1,0,0\n"
+             "total,exact,0.5,10,20,9,0.9,0,0,1,0,0\n"
+             "total,cubic,0.05,10,200,0,0,2,1,1,0.001,0.001\n"
+             "\"dir, with a comma/q.csv\",fast,0.1,10,100,0,0,0,3,1,1e-9,1e-9\n"
+             "total,fast,0.1,10,100,0,0,0,3,1,1e-9,1e-9\n");
+  write_file(directory / "plot.gp", batchccd::bench::plot_script("a 'title'", "methods.csv", "plot.png",
+                                                                     {"exact", "cubic", "fast"}));
+  EXPECT_NO_THROW(batchccd::bench::run_gnuplot(*gnuplot, directory, "plot.gp"));
+  EXPECT_TRUE(is_png(directory / "plot.png"));
+  write_file(directory / "broken.gp", "plot nonsense(\n");
+  EXPECT_THROW(batchccd::bench::run_gnuplot(*gnuplot, directory, "broken.gp"), std::runtime_error);
+  fs::remove_all(directory);
+}
+
+}  // namespace
