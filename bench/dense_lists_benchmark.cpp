@@ -1,0 +1,92 @@
+// What a frame loop pays on the dense candidate lists of the shared scenes
+// (../shared/data/scenes, skipped when absent): mesh_ccd in conservative
+// mode, hits only, results reused, one thread, at minimum separations of 0,
+// 1e-3 and 1e-2 mean edge lengths. The lists are a swept-box broad phase's,
+// boxes grown by one mean edge length (as batchccd_make_candidates writes
+// them), made once outside the timing.
+//
+//   build/bench/batchccd_dense_lists_benchmark [--benchmark_filter=REGEX]
+//
+// Counters per call: candidates/s (items_per_second), the share culled by
+// each lane filter, the survivors' share and the hits. Ratios between
+// separations are only meaningful within one run.
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "batchccd/batchccd.hpp"
+#include "broad_phase.hpp"
+
+namespace batchccd {
+namespace {
+
+const std::filesystem::path kScenes = BATCHCCD_SHARED_DATA "/scenes";
+constexpr const char* kSceneNames[] = {"armadillo-rollers-326", "cloth-funnel-227", "rod-twist-3036"};
+constexpr double kSeparations[] = {0, 1e-3, 1e-2};  // in mean edge lengths
+
+struct DenseList {
+  Scene scene;
+  Candidates candidates;
+  double mean_edge_length = 0;
+};
+
+const DenseList* dense_list(const std::string& name) {
+  static std::map<std::string, DenseList> lists;
+  if (const auto found = lists.find(name); found != lists.end()) return &found->second;
+  const std::filesystem::path directory = kScenes / name;
+  if (!is_scene_directory(directory)) return nullptr;
+  DenseList list;
+  list.scene = read_scene(directory);
+  const MeshView view{list.scene.positions_t0, list.scene.positions_t1, list.scene.faces};
+  list.mean_edge_length = scenes::mean_edge_length(view);
+  list.candidates = scenes::swept_box_candidates(view, list.mean_edge_length);
+  return &lists.emplace(name, std::move(list)).first->second;
+}
+
+void MeshCcdOnDenseList(benchmark::State& state, const std::string& name, double separation) {
+  const DenseList* list = dense_list(name);
+  if (list == nullptr) {
+    state.SkipWithError("../shared/data/scenes is absent");
+    return;
+  }
+  Options options;
+  options.threads = 1;
+  options.per_candidate_results = false;
+  options.hit_list = true;
+  options.min_distance = separation * list->mean_edge_length;
+  const MeshView view{list->scene.positions_t0, list->scene.positions_t1, list->scene.faces};
+  BatchResult result;
+  mesh_ccd(view, list->candidates, options, result);  // first touch and allocation outside the timing
+  for (auto _ : state) {
+    mesh_ccd(view, list->candidates, options, result);
+    benchmark::DoNotOptimize(result.earliest_toi);
+  }
+  const Counters& c = result.counters;
+  const auto share = [&](std::int64_t count) { return static_cast<double>(count) / static_cast<double>(c.candidates); };
+  state.SetItemsProcessed(c.candidates * state.iterations());
+  state.counters["sign_culled"] = share(c.culled_by_sign);
+  state.counters["separation_culled"] = share(c.culled_by_separation);
+  state.counters["survivors"] = share(c.solved);
+  state.counters["hits"] = static_cast<double>(c.hits);
+  state.counters["candidates"] = static_cast<double>(c.candidates);
+}
+
+const bool registered = [] {
+  for (const char* name : kSceneNames)
+    for (const double separation : kSeparations)
+      benchmark::RegisterBenchmark(
+          ("MeshCcdOnDenseList/" + std::string(name) + "/min_distance_" + std::to_string(separation).substr(0, 5))
+              .c_str(),
+          MeshCcdOnDenseList, std::string(name), separation)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+  return true;
+}();
+
+}  // namespace
+}  // namespace batchccd
+
+BENCHMARK_MAIN();
