@@ -71,6 +71,7 @@ void MeshCcdOnDenseList(benchmark::State& state, const std::string& name, double
   state.counters["separation_culled"] = share(c.culled_by_separation);
   state.counters["survivors"] = share(c.solved);
   state.counters["hits"] = static_cast<double>(c.hits);
+  state.counters["undecided"] = static_cast<double>(c.undecided);
   state.counters["candidates"] = static_cast<double>(c.candidates);
 }
 

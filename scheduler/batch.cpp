@@ -73,26 +73,15 @@ struct Separations {
 };
 
 // The lane filters over candidates [0, count) of a source, in batches:
-// the survivors' indices, in no particular order. With separations the
-// scalar path runs, one candidate at a time.
+// the survivors' indices, in no particular order.
 template <class Source>
 std::vector<std::size_t> filter_source(const Source& source, std::size_t count,
                                        simd::FilterFunction<Source> lanes, const Options& options,
                                        const Separations& separations, Partials& partials) {
-  const reference::FilterSettings settings = reference::filter_settings(options);
-  const auto filter = [&](std::size_t begin, std::size_t end, std::uint32_t* kept, simd::FilterCounts& culls) {
-    if (!separations.any()) return lanes(source, begin, end, settings, kept, culls);
-    std::size_t survivors = 0;
-    reference::FilterSettings within = settings;
-    for (std::size_t i = begin; i < end; ++i) {
-      within.min_distance = separations.at(i);
-      const reference::FilterVerdict verdict = reference::run_filters(source.kind, simd::query_at(source, i), within);
-      culls.sign += verdict.sign;
-      culls.separation += verdict.separation;
-      if (!verdict.culled()) kept[survivors++] = static_cast<std::uint32_t>(i - begin);
-    }
-    return survivors;
-  };
+  reference::FilterSettings settings = reference::filter_settings(options);
+  settings.within = separations.any();
+  settings.min_distance = separations.all;
+  settings.min_distances = separations.each;
   tbb::enumerable_thread_specific<std::vector<std::uint32_t>> batch_survivors;
   tbb::enumerable_thread_specific<std::vector<std::size_t>> survivors;
   tbb::parallel_for(
@@ -101,7 +90,7 @@ std::vector<std::size_t> filter_source(const Source& source, std::size_t count,
         std::vector<std::uint32_t>& kept_in_batch = batch_survivors.local();
         if (kept_in_batch.size() < range.size()) kept_in_batch.resize(std::max(range.size(), simd::kFilterBatch));
         simd::FilterCounts culls;
-        const std::size_t kept = filter(range.begin(), range.end(), kept_in_batch.data(), culls);
+        const std::size_t kept = lanes(source, range.begin(), range.end(), settings, kept_in_batch.data(), culls);
         Counters& counters = partials.local().counters;
         counters.culled += static_cast<std::int64_t>(range.size() - kept);
         counters.culled_by_sign += static_cast<std::int64_t>(culls.sign);

@@ -17,8 +17,10 @@ std::size_t filter_range_scalar(const Source& source, std::size_t begin, std::si
                                 const reference::FilterSettings& settings,
                                 std::uint32_t* survivors, FilterCounts& counts) {
   std::size_t kept = 0;
+  reference::FilterSettings own = settings;  // a candidate's own separation
   for (std::size_t i = begin; i < end; ++i) {
-    const reference::FilterVerdict verdict = reference::run_filters(source.kind, query_at(source, i), settings);
+    own.min_distance = settings.separation_of(i);
+    const reference::FilterVerdict verdict = reference::run_filters(source.kind, query_at(source, i), own);
     counts.sign += verdict.sign;
     counts.separation += verdict.separation;
     if (!verdict.culled()) survivors[kept++] = static_cast<std::uint32_t>(i - begin);

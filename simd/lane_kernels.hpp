@@ -381,6 +381,11 @@ struct ScaledFrame {
   Double absolute_error;
   Mask evaluable;  // finite and not coincident: the filters may cull
 
+  // reference::to_scaled_length, lane by lane.
+  Double scaled_length(const Double& length) const {
+    return xsimd::max(length_scale.apply(length * input_factor), Double(0x1p-1022));
+  }
+
   // A group's positions loaded again (the kernels keep only differences).
   template <class Source>
   ScaledFrame(const Source& source, const ListedGroup<Arch>& group) {
@@ -398,10 +403,10 @@ struct ScaledFrame {
     // Inputs near overflow quartered first. That is rare, so a group of
     // lanes without one skips the multiplications.
     const Mask huge = largest >= Double(reference::kHugeInput);
+    input_factor = xsimd::select(huge, Double(0.25), Double(1.0));
     if (xsimd::any(huge)) {
-      const Double factor = xsimd::select(huge, Double(0.25), Double(1.0));
       for (auto& point : x)
-        for (Vector& p : point) p = {p.x * factor, p.y * factor, p.z * factor};
+        for (Vector& p : point) p = {p.x * input_factor, p.y * input_factor, p.z * input_factor};
     }
     Double difference[6];
     for (int tau = 0; tau < 2; ++tau)
@@ -413,11 +418,15 @@ struct ScaledFrame {
     const Mask distinct = largest_difference > Double(0.0);
     const auto scale = L::inverse_power_of_two(xsimd::select(distinct, largest_difference, Double(1.0)));
     scale.scale(&relative[0][0], 6);
+    length_scale = scale;
     // ScaledQuery::absolute_error: a quartered input's underflow floor
     // (twice 2^-1074), scaled with the differences, plus the scaling's own.
     absolute_error = xsimd::select(huge, scale.apply(Double(0x1p-1073)), Double(0.0)) + Double(0x1p-1074);
     evaluable = finite & distinct;
   }
+
+  Double input_factor;
+  typename L::PowerOfTwo length_scale;
 };
 
 // A group's differences x_{i+2}(tau) - x_1(tau) in the input's units, each
@@ -461,6 +470,16 @@ struct DirectDifferences {
   }
 };
 
+// Each lane's minimum separation (FilterSettings::separation_of).
+template <class Arch, class Group>
+typename Lanes<Arch>::Double lane_separations(const reference::FilterSettings& settings, const Group& group) {
+  using Double = typename Lanes<Arch>::Double;
+  if (settings.min_distances == nullptr) return Double(settings.min_distance);
+  alignas(64) double values[Lanes<Arch>::size];
+  for (std::size_t j = 0; j < Lanes<Arch>::size; ++j) values[j] = settings.min_distances[group[j]];
+  return Double::load_aligned(values);
+}
+
 // The sign filter's verdicts in the scaled frame (reference::run_filters):
 // bit k set when lane k is certainly free of contact there. Rare, so out of
 // line, where it costs the common path no registers; it loads the
@@ -474,9 +493,15 @@ template <class Arch, class Source>
   for (int i = 0; i < 3; ++i)
     for (int tau = 0; tau < 2; ++tau)
       largest[i][tau] = Magnitudes<Arch>::largest(frame.relative[i][tau]);
-  const auto culled = reference::sign_filter_culls(frame.relative, largest,
-                                                   reference::coefficient_floor(frame.absolute_error),
-                                                   settings.certified, settings.subdivide);
+  const Double floor = reference::coefficient_floor(frame.absolute_error);
+  if (settings.within) {
+    const Double separation = frame.scaled_length(lane_separations<Arch>(settings, group));
+    return lane_bits<Arch>(reference::plane_distance_culls(source.kind, frame.relative, largest, floor,
+                                                           settings.certified, separation) &
+                           frame.evaluable);
+  }
+  const auto culled =
+      reference::sign_filter_culls(frame.relative, largest, floor, settings.certified, settings.subdivide);
   return lane_bits<Arch>(culled & frame.evaluable);
 }
 
@@ -499,8 +524,13 @@ template <class Arch, class Source>
   // reference::separation_error, lane by lane.
   const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
   const Mask enabled = settings.certified ? Mask(frame.absolute_error <= Double(0x1p-900)) : Mask(true);
-  const Mask culled = reference::separation_filter_culls(source.kind, frame.relative, Double(error.relative),
-                                                         Double(error.floor));
+  const Mask culled =
+      settings.within
+          ? Mask(reference::separation_filter_culls_within(
+                source.kind, frame.relative, Double(error.relative), Double(error.floor),
+                frame.scaled_length(lane_separations<Arch>(settings, group))))
+          : Mask(reference::separation_filter_culls(source.kind, frame.relative, Double(error.relative),
+                                                    Double(error.floor)));
   return lane_bits<Arch>(culled & enabled & frame.evaluable);
 }
 
@@ -510,7 +540,9 @@ template <class Arch, class Source>
 // are never culled. Frames as in reference::run_filters: direct where the
 // differences lie in its window; elsewhere (rare: only groups with such a
 // lane pay) the scaled frame's whole filter, halves included.
-template <class Arch, class Source, class Group>
+// Within: a call with separations (FilterSettings::within), the sign
+// filter as the distance to the plane or line pair.
+template <class Arch, bool within, class Source, class Group>
 [[gnu::flatten]] std::uint32_t whole_interval_culled_lanes(const Source& source, const Group& group,
                                                            std::size_t count,
                                                            const reference::FilterSettings& settings) {
@@ -518,10 +550,16 @@ template <class Arch, class Source, class Group>
   const DirectDifferences<Arch> differences(source, group);
   const auto direct = differences.within(reference::kDirectLowest, reference::kDirectHighest);
   const std::uint32_t lanes_in_use = (1u << count) - 1;
-  const auto test = reference::sign_test(differences.relative, differences.largest,
-                                         Double(reference::direct_coefficient_error().floor),
-                                         settings.certified);
-  std::uint32_t culled = lane_bits<Arch>(direct & test.whole());
+  const Double floor(reference::direct_coefficient_error().floor);
+  std::uint32_t culled;
+  if constexpr (within) {
+    culled = lane_bits<Arch>(direct & reference::plane_distance_culls(source.kind, differences.relative,
+                                                                      differences.largest, floor, settings.certified,
+                                                                      lane_separations<Arch>(settings, group)));
+  } else {
+    const auto test = reference::sign_test(differences.relative, differences.largest, floor, settings.certified);
+    culled = lane_bits<Arch>(direct & test.whole());
+  }
   const std::uint32_t scaled_lanes = ~lane_bits<Arch>(direct) & lanes_in_use;
   if (scaled_lanes != 0)
     culled |= scaled_lanes & sign_culled_in_scaled_frame<Arch>(source, group, settings);
@@ -544,7 +582,7 @@ template <class Arch, class Source>
   const DirectDifferences<Arch> differences(source, group);
   const std::uint32_t lanes_in_use = (1u << count) - 1;
   LaterCulls culled;
-  if (settings.sign && settings.subdivide) {
+  if (settings.sign && settings.subdivide && !settings.within) {
     const auto direct = differences.within(reference::kDirectLowest, reference::kDirectHighest);
     const auto test = reference::sign_test(differences.relative, differences.largest,
                                            Double(reference::direct_coefficient_error().floor),
@@ -556,9 +594,13 @@ template <class Arch, class Source>
                                                        reference::kSeparationDirectHighest);
     const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
     const std::uint32_t kept = ~culled.sign & lanes_in_use;
-    culled.separation = kept & lane_bits<Arch>(direct & reference::separation_filter_culls(
-                                                              source.kind, differences.relative,
-                                                              Double(error.relative), Double(error.floor)));
+    const auto culls =
+        settings.within
+            ? reference::separation_filter_culls_within(source.kind, differences.relative, Double(error.relative),
+                                                        Double(error.floor), lane_separations<Arch>(settings, group))
+            : reference::separation_filter_culls(source.kind, differences.relative, Double(error.relative),
+                                                 Double(error.floor));
+    culled.separation = kept & lane_bits<Arch>(direct & culls);
     const std::uint32_t scaled_lanes = ~lane_bits<Arch>(direct) & kept;
     if (scaled_lanes != 0)
       culled.separation |= scaled_lanes & separation_culled_in_scaled_frame<Arch>(source, group, settings);
@@ -616,10 +658,10 @@ template <class Arch>
 // The filters over candidates [begin, end): see FilterFunction. The first
 // pass runs over all of them and compacts its survivors; the second runs
 // over those alone, in full lanes, and compacts them again.
-template <class Arch, class Source>
-std::size_t filter_range(const Source& source, std::size_t begin, std::size_t end,
-                         const reference::FilterSettings& settings, std::uint32_t* survivors,
-                         FilterCounts& counts) {
+template <class Arch, bool within, class Source>
+std::size_t filter_range_of(const Source& source, std::size_t begin, std::size_t end,
+                            const reference::FilterSettings& settings, std::uint32_t* survivors,
+                            FilterCounts& counts) {
   constexpr std::size_t lanes = Lanes<Arch>::size;
   std::size_t kept = 0;
   for (std::size_t first = begin; first < end; first += lanes) {
@@ -628,18 +670,18 @@ std::size_t filter_range(const Source& source, std::size_t begin, std::size_t en
     std::uint32_t culled = 0;
     if (settings.sign && count == lanes) {
       const ConsecutiveGroup<Arch> group{static_cast<std::int64_t>(first)};
-      culled = whole_interval_culled_lanes<Arch>(source, group, count, settings);
+      culled = whole_interval_culled_lanes<Arch, within>(source, group, count, settings);
     } else if (settings.sign) {
       ListedGroup<Arch> group;  // the last few; spare lanes repeat the last
       for (std::size_t j = 0; j < lanes; ++j)
         group.candidate[j] = static_cast<std::int64_t>(first + std::min(j, count - 1));
-      culled = whole_interval_culled_lanes<Arch>(source, group, count, settings);
+      culled = whole_interval_culled_lanes<Arch, within>(source, group, count, settings);
     }
     counts.sign += static_cast<std::size_t>(__builtin_popcount(culled));
     const auto offset = static_cast<std::uint32_t>(first - begin);
     kept += compress<Arch>(~culled & ((1u << count) - 1), offset, survivors + kept);
   }
-  if (!(settings.sign && settings.subdivide) && !settings.separation) return kept;
+  if (!(settings.sign && settings.subdivide && !within) && !settings.separation) return kept;
   const std::size_t first_survivors = kept;
   kept = 0;
   std::uint32_t offsets[8] = {};  // survivors' indices relative to begin, lane by lane
@@ -657,6 +699,16 @@ std::size_t filter_range(const Source& source, std::size_t begin, std::size_t en
     kept += compress<Arch>(keep, offsets, survivors + kept);
   }
   return kept;
+}
+
+// A kernel for calls with separations and one for those without, each
+// compiled for its own: the common one keeps its instructions.
+template <class Arch, class Source>
+std::size_t filter_range(const Source& source, std::size_t begin, std::size_t end,
+                         const reference::FilterSettings& settings, std::uint32_t* survivors,
+                         FilterCounts& counts) {
+  if (settings.within) return filter_range_of<Arch, true>(source, begin, end, settings, survivors, counts);
+  return filter_range_of<Arch, false>(source, begin, end, settings, survivors, counts);
 }
 
 // Raw queries: the kind picked once a call, so that each kernel knows it.

@@ -41,22 +41,49 @@ std::vector<std::uint32_t> survivors(simd::FilterFunction<Source> filter, const 
   return kept;
 }
 
+// Per-candidate separations of every scale, 0 and subnormal included.
+const std::vector<double>& candidate_separations() {
+  static const std::vector<double> values = [] {
+    std::mt19937_64 random(7);
+    std::vector<double> v(1 << 20);  // as many as the largest test source
+    for (double& x : v) {
+      const int which = static_cast<int>(random() % 4);
+      x = which == 0 ? 0.0 : std::ldexp(1.0 + static_cast<double>(random() % 1024) / 1024,
+                                        which == 1 ? -1074 + static_cast<int>(random() % 1200) : -static_cast<int>(random() % 12));
+    }
+    return v;
+  }();
+  return values;
+}
+
 // Certified and plain, each filter alone and both, the sign test with and
-// without its V = 2 step.
+// without its V = 2 step; and with separations (one for all, of several
+// scales, or one per candidate), each filter alone and both.
 std::vector<reference::FilterSettings> all_settings() {
   std::vector<reference::FilterSettings> settings;
-  for (bool certified : {true, false})
+  for (bool certified : {true, false}) {
     for (auto [sign, subdivide, separation] :
          {std::tuple{true, true, false}, {true, false, false}, {false, true, true},
           {true, true, true}, {true, false, true}})
       settings.push_back({.certified = certified, .sign = sign, .subdivide = subdivide,
                           .separation = separation});
+    for (auto [sign, separation] : {std::pair{true, true}, {true, false}, {false, true}}) {
+      for (const double min_distance : {0.0, 1e-3, 0.25, 0x1p-1060, 1e300})
+        settings.push_back({.certified = certified, .sign = sign, .separation = separation, .within = true,
+                            .min_distance = min_distance});
+      settings.push_back({.certified = certified, .sign = sign, .separation = separation, .within = true,
+                          .min_distances = candidate_separations().data()});
+    }
+  }
   return settings;
 }
 
 std::string describe(const reference::FilterSettings& s) {
-  return std::string(s.certified ? "certified" : "plain") +
-         (s.sign ? (s.subdivide ? " sign" : " sign-dnf") : "") + (s.separation ? " separation" : "");
+  std::string text = std::string(s.certified ? "certified" : "plain") +
+                     (s.sign ? (s.subdivide ? " sign" : " sign-dnf") : "") + (s.separation ? " separation" : "");
+  if (s.within)
+    text += s.min_distances ? " within per-candidate" : " within " + std::to_string(s.min_distance);
+  return text;
 }
 
 // Queries that stress every step of the lane arithmetic.
@@ -198,6 +225,7 @@ TEST(SimdKernels, SecondPassEvaluatesTheSurvivorsItIsGiven) {
   const std::vector<std::uint32_t> collisions = {0, 1, 2, 3, 4, 5, 7};
   for (const reference::FilterSettings& settings : all_settings()) {
     if (!settings.sign && !settings.separation) continue;
+    if (settings.within && (settings.min_distances != nullptr || settings.min_distance > 1)) continue;  // within reach
     for (const simd::FilterKernels* k : vector_kernels()) {
       std::vector<std::uint32_t> kept = survivors(k->raw, source, 0, queries.size(), settings);
       kept.resize(kept.size() - 2);  // the counts

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cstddef>
+
 #include "batchccd/options.hpp"
 #include "reference/scaled_query.hpp"
 
@@ -11,15 +13,21 @@ struct FilterSettings {
   bool sign = true;        // the Bernstein sign test on the coplanarity cubic
   bool subdivide = true;   // its V = 2 step (false: DNF-style, the four signs only)
   bool separation = true;  // distance at t = 0 against the largest displacement
-  // Options::min_distance (or a candidate's own): with > 0 the sign filter
-  // tests the distance to the plane or line pair instead (DESIGN.md §8).
-  double min_distance = 0;
+  // A call with minimum separations (DESIGN.md §8) filters every candidate
+  // for one, 0 included: the sign filter as the distance to the plane or
+  // line pair (no halves), the separation filter with the separation added.
+  bool within = false;
+  double min_distance = 0;                 // for every candidate,
+  const double* min_distances = nullptr;   // or one per candidate
+  double separation_of(std::size_t candidate) const {
+    return min_distances != nullptr ? min_distances[candidate] : min_distance;
+  }
 };
 
 // The filters a call's options ask for (mode cubic runs none: callers skip them).
 inline FilterSettings filter_settings(const Options& options) {
   return {options.mode != Mode::fast, options.sign_filter, options.sign_filter_subdivision,
-          options.separation_filter, options.min_distance};
+          options.separation_filter, options.min_distance > 0, options.min_distance};
 }
 
 // What each filter said of one query. The sign filter runs first; the
@@ -36,8 +44,7 @@ struct FilterVerdict {
 // product of three from overflow and from underflow that matters (the
 // direct frame, error_bounds.hpp), else in the scaled frame; the separation
 // filter always in the scaled frame. The lane kernels decide the same, lane
-// for lane (without a minimum separation: with one, both filters run in the
-// scaled frame, here only).
+// for lane. With `within`, for the separation settings.min_distance.
 FilterVerdict run_filters(Kind kind, const Query& query, const FilterSettings& settings);
 
 // The sign filter alone, in the scaled frame.

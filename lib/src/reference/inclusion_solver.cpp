@@ -8,7 +8,9 @@
 
 #include "reference/bernstein.hpp"
 #include "reference/error_bounds.hpp"
+#include "reference/filter.hpp"
 #include "reference/inside_proof.hpp"
+#include "reference/separation_filter.hpp"
 #include "reference/sign_filter.hpp"
 
 namespace batchccd::reference {
@@ -84,8 +86,14 @@ class InclusionSolver {
       cubic_error_ = interpolated_coefficient_error(query.absolute_error);
       function_error_ = collision_function_error(query.absolute_error);
     }
-    // A rounded-up subnormal separation cannot witness a contact.
-    witness_distance_ = settings.min_distance >= 0x1p-1022 ? settings.min_distance : 0;
+    // A separation raised to 2^-1022 (to_scaled_length) cannot witness a contact.
+    absolute_error_ = query.absolute_error;
+    if (settings.min_distance > 0) {  // the distance's Lipschitz constant, for advance()
+      const SeparationErrorModel error = separation_error(absolute_error_, settings.certified);
+      motion_ = std::sqrt(largest_displacement2(kind, position_, error.relative, error.floor)) *
+                SeparationErrors::grow;
+    }
+    witness_distance_ = settings.min_distance > 0x1p-1022 ? settings.min_distance : 0;
   }
 
   // Outer search over time, earliest interval first, so the first interval
@@ -157,18 +165,149 @@ class InclusionSolver {
   // or nothing when it was excluded or split. A contact found in an interval
   // not yet toi_tolerance wide splits it: the first contact may lie earlier.
   std::optional<SolverOutcome> search_within_distance(const Interval& time, const Endpoints& ends) {
+    // Conservative advancement first: where it gets to a contact it
+    // settles the query, and the times it passes need no search.
+    if (time.low >= advanced_ && advance(time.low, std::min(time.high, settings_.tmax)))
+      return SolverOutcome{true, advanced_, false, settings_.certified};
+    if (time.high <= advanced_ || apart_over(ends)) return std::nullopt;
     const bool settled = time.width() <= settings_.toi_tolerance || !settings_.need_toi;
     const std::int64_t budget = time.width() > kWideInterval ? kWideBudget : settings_.max_iterations;
     const Search search = search_parameters(ends, budget);
     if (search == Search::excluded) return std::nullopt;
-    if (search == Search::out_of_iterations) return SolverOutcome{true, time.low, true, false};
-    if (search == Search::witnessed && settled)  // certain when the witness counts (by tmax)
-      return SolverOutcome{true, time.low, false, settings_.certified && time.middle() <= settings_.tmax};
+    // Every time before `start` is free of contact.
+    const double start = std::max(time.low, advanced_);
+    if (search == Search::out_of_iterations) return SolverOutcome{true, start, true, false};
+    if (search == Search::witnessed) {
+      // A contact at the middle: the first one lies in [start, middle].
+      // Advancing conservatively from start usually locates it to
+      // toi_tolerance at once; otherwise the search goes on from there.
+      if (!settled && advance(start, std::min(time.middle(), settings_.tmax)))
+        return SolverOutcome{true, advanced_, false, settings_.certified};
+      const bool certain = settings_.certified && time.middle() <= settings_.tmax;
+      if (settled || time.middle() - advanced_ <= settings_.toi_tolerance)
+        return SolverOutcome{true, std::max(start, advanced_), false, certain};
+    }
     if (search == Search::found && settled)
-      return SolverOutcome{.hit = true, .toi = time.low, .within_tolerance = true};
-    if (time.width() <= kSmallestWidth) return SolverOutcome{true, time.low, false, false};
+      return SolverOutcome{.hit = true, .toi = start, .within_tolerance = true};
+    if (time.width() <= kSmallestWidth) return SolverOutcome{true, start, false, false};
     split(time);
     return std::nullopt;
+  }
+
+  // Conservative advancement (docs/design.md §11): the distance changes by
+  // at most m (the largest relative displacement) per unit of time, so at a
+  // distance d > s at time t no contact comes before t + (d - s) / m. Steps
+  // from `from` towards `until` while they get anywhere, on a 2^-45 grid
+  // (dyadic times keep the interpolation's error bound), and records how far
+  // the times are free of contact. Once its steps get shorter than
+  // toi_tolerance it looks for a pair of points certainly within s at most
+  // toi_tolerance ahead (where it stops, at the time itself): a contact
+  // there locates the first one, and it returns true.
+  bool advance(double from, double until) {
+    constexpr int kSteps = 64;
+    const SeparationErrorModel error = separation_error(absolute_error_, settings_.certified);
+    if (!error.enabled || !(motion_ > 0)) return false;
+    constexpr double shrink = SeparationErrors::shrink, grid = 0x1p45;
+    double t = from;
+    for (int step = 0; step < kSteps && t < until; ++step) {
+      Vector3<double> at_t[3][2];
+      for (int i = 0; i < 3; ++i) at_t[i][0] = at_t[i][1] = interpolate(position_[i][0], position_[i][1], t);
+      const double distance = std::sqrt(distance2_at(kind_, at_t, 0, error.relative, error.floor)) * shrink;
+      const double gap = (distance - settings_.min_distance * SeparationErrors::grow) * shrink;
+      if (!(gap > 0)) {
+        advanced_ = std::max(advanced_, t);
+        return witnessed_at(t);
+      }
+      // Whole grid steps: t is on the grid, so the sum is exact.
+      const double step_length = std::floor(gap / motion_ * shrink * grid) / grid;
+      const double next = std::min(t + step_length, until);
+      if (step_length < settings_.toi_tolerance) {
+        const double ahead = std::min(t + std::floor(settings_.toi_tolerance * grid) / grid, until);
+        if (ahead > t && witnessed_at(ahead)) {
+          advanced_ = std::max(advanced_, next);
+          return true;
+        }
+      }
+      if (next <= t) break;
+      t = next;
+    }
+    advanced_ = std::max(advanced_, t);
+    return false;
+  }
+
+  // Whether the primitives are certainly within the separation at time t
+  // (on the 2^-45 grid): F at their closest parameters, found in plain
+  // double and put on the same grid (any parameters of the primitives bound
+  // the distance from above), evaluated with error bounds.
+  bool witnessed_at(double t) const {
+    constexpr double grid = 0x1p45;
+    const auto [u, v] = closest_parameters(endpoints(Interval{t, t}).position[0]);
+    const double u_grid = std::floor(u * grid) / grid, v_grid = std::floor(v * grid) / grid;
+    const Image image = evaluate(endpoints(Interval{t, t}), ParameterBox{{u_grid, u_grid}, {v_grid, v_grid}});
+    return image.centre_distance <= witness_distance_;
+  }
+
+  // Parameters (u, v) of F's smallest value at one time, in plain double:
+  // VF F = p - u b - v c over the triangle u, v >= 0, u + v <= 1; EE
+  // F = u a1 - b0 - v (b1 - b0) over [0, 1]^2 (positions relative to x1).
+  std::array<double, 2> closest_parameters(const std::array<V3, 3>& x) const {
+    const auto value = [&](double u, double v) {
+      const std::array<double, 3> w = weights(kind_, u, v);
+      const V3 f = weighted_sum(w, x);
+      return dot(f, f);
+    };
+    // Where F is smallest along the segment from F(start) in direction d, clamped.
+    std::array<double, 2> best{0, 0};
+    double best_value = value(0, 0);
+    const auto consider = [&](double u, double v) {
+      u = std::clamp(u, 0.0, 1.0), v = std::clamp(v, 0.0, 1.0);
+      if (kind_ == Kind::vertex_face && u + v > 1) v = 1 - u;
+      if (const double f = value(u, v); f < best_value) best_value = f, best = {u, v};
+    };
+    const std::array<double, 3> at_origin = weights(kind_, 0, 0);
+    V3 direction[2];
+    for (int d = 0; d < 2; ++d) {
+      std::array<double, 3> w = weights(kind_, d == 0 ? 1 : 0, d == 1 ? 1 : 0);
+      for (int i = 0; i < 3; ++i) w[i] -= at_origin[i];
+      direction[d] = weighted_sum(w, x);
+    }
+    const V3 origin = weighted_sum(at_origin, x);
+    const double aa = dot(direction[0], direction[0]), ab = dot(direction[0], direction[1]),
+                 bb = dot(direction[1], direction[1]), ao = dot(direction[0], origin),
+                 bo = dot(direction[1], origin), determinant = aa * bb - ab * ab;
+    if (determinant > 0) consider((ab * bo - bb * ao) / determinant, (ab * ao - aa * bo) / determinant);
+    // Along each side of the domain: u or v fixed at 0 or 1 (VF: the third side u + v = 1).
+    if (aa > 0) consider(-ao / aa, 0), consider(-(ao + ab) / aa, 1);
+    if (bb > 0) consider(0, -bo / bb), consider(1, -(bo + ab) / bb);
+    if (kind_ == Kind::vertex_face) {
+      const V3 side = direction[1] - direction[0];  // from (1, 0) towards (0, 1)
+      const V3 at_corner = origin + direction[0];
+      if (const double length2 = dot(side, side); length2 > 0) consider(1 + dot(side, at_corner) / length2, -dot(side, at_corner) / length2);
+    }
+    return best;
+  }
+
+  // The separation filter over one time interval (docs/design.md §11): the
+  // motion within it is linear too, so the filter of the whole step holds
+  // for the positions at its ends. Their interpolation adds 3 roundings to
+  // the at most 21 the filter's 64 u bound.
+  // The sign filter's form for a separation (the distance to the plane or
+  // line pair) over the interval goes first, as the cubic's signs do
+  // without one; its coefficients from interpolated positions.
+  bool apart_over(const Endpoints& ends) const {
+    Vector3<double> relative[3][2];
+    double largest[3][2];
+    for (int i = 0; i < 3; ++i)
+      for (int end = 0; end < 2; ++end) {
+        relative[i][end] = ends.position[end][i];
+        largest[i][end] = largest_magnitude(relative[i][end]);
+      }
+    if (plane_distance_culls(kind_, relative, largest, cubic_error_.floor, settings_.certified,
+                             settings_.min_distance, cubic_error_.relative))
+      return true;
+    const SeparationErrorModel error = separation_error(absolute_error_, settings_.certified);
+    return error.enabled &&
+           separation_filter_culls_within(kind_, relative, error.relative, error.floor, settings_.min_distance);
   }
 
   // The first contact lies in `time` at the cubic's first root there (a
@@ -449,6 +588,9 @@ class InclusionSolver {
   ErrorModel cubic_error_;
   ErrorModel function_error_;
   double witness_distance_ = 0;
+  double absolute_error_ = 0;
+  double motion_ = 0;      // an upper bound of the largest relative displacement
+  double advanced_ = 0;    // every time before it is free of contact (advance)
   std::int64_t iterations_ = 0;
 };
 

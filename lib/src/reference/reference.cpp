@@ -47,10 +47,12 @@ void evaluate_within_distance(const ScaledQuery& scaled, Kind kind, const Option
   }
   SolverSettings settings = solver_settings(options);
   settings.min_distance = separation;
+  // No exact stage to hand over to: the whole budget.
+  settings.max_iterations = options.max_iterations;
   const bool exact = options.mode == Mode::exact;
-  if (exact) {  // the band it may report: 2^-40 of the query's size
+  if (exact) {  // the band it may report: 2^-40 of the query's size; the TOI to 2^-40
     settings.tolerance = kExactToiWidth;
-    settings.max_iterations = options.max_iterations;
+    settings.toi_tolerance = kExactToiWidth;
   }
   const SolverOutcome outcome = solve_inclusion(kind, scaled, settings);
   evaluation.undecided = outcome.undecided || (exact && outcome.hit && !outcome.certain);

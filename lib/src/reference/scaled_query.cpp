@@ -86,7 +86,8 @@ ScaledQuery scale_query(Kind kind, const Query& query) {
     for (Vec3& value : point_pair)
       value = {times_power_of_two(value[0], exponent), times_power_of_two(value[1], exponent),
                times_power_of_two(value[2], exponent)};
-  scaled.length_exponent = exponent - (huge ? 2 : 0);
+  scaled.input_factor = input_factor;
+  scaled.exponent = exponent;
   // Both inputs of a difference may carry input_floor, magnified with it;
   // scaling down may round a subnormal once more.
   scaled.absolute_error = times_power_of_two(2 * input_floor, exponent) + kSmallestSubnormal;
@@ -94,10 +95,7 @@ ScaledQuery scale_query(Kind kind, const Query& query) {
 }
 
 double to_scaled_length(const ScaledQuery& query, double length) {
-  if (length == 0) return 0;
-  // One rounding, only where the result is subnormal: then rounded up.
-  const double scaled = std::ldexp(length, query.length_exponent);
-  return scaled < 0x1p-1022 ? std::nextafter(scaled, INFINITY) : scaled;
+  return std::max(std::ldexp(length * query.input_factor, query.exponent), 0x1p-1022);
 }
 
 }  // namespace batchccd::reference

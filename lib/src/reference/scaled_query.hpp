@@ -24,16 +24,17 @@ struct ScaledQuery {
   double absolute_error = 0;
   bool finite = true;      // false: some input coordinate is NaN or infinite
   bool coincident = false; // all four points coincide at t0 and t1
-  // Input lengths times 2^length_exponent are lengths in this frame.
-  int length_exponent = 0;
+  // An input length l is (l * input_factor) * 2^exponent in this frame.
+  double input_factor = 1;  // 1/4 for inputs near overflow
+  int exponent = 0;
 };
 
 ScaledQuery scale_query(Kind kind, const Query& query);
 
 // A length of the input's units (Options::min_distance) in the scaled
-// frame of `query`, rounded up (exact unless it falls below 2^-1022;
-// +inf when it exceeds the double range, as it then exceeds every distance
-// in the frame).
+// frame of `query`: exact, but raised to 2^-1022 where it falls below
+// (an upper bound then), +inf past the double range (where it exceeds
+// every distance in the frame). The lane kernels compute it alike.
 double to_scaled_length(const ScaledQuery& query, double length);
 
 // Every coordinate finite (no NaN, no infinity).

@@ -211,19 +211,24 @@ auto separation_filter_culls(Kind kind, const Vector3<T> (&relative)[3][2], T er
   return sum2 > displacement2;
 }
 
-// The filter with a minimum separation s > 0 (DESIGN.md §8), in the same
-// frame as `relative`: a contact at t needs d0 <= t m + s and
-// d1 <= (1 - t) m + s, so d0 + d1 > m + 2 s rules it out. The lengths are
-// taken from their certified squares with a margin of 8 u for each root,
-// sum and product. Scalar: the lane kernels run without a separation.
-inline bool separation_filter_culls_within(Kind kind, const Vector3<double> (&relative)[3][2],
-                                           double error_relative, double floor, double separation) {
-  constexpr double shrink = SeparationErrors::shrink, grow = SeparationErrors::grow;
-  const double motion = std::sqrt(largest_displacement2(kind, relative, error_relative, floor)) * grow;
-  const double start = std::sqrt(distance2_at(kind, relative, 0, error_relative, floor)) * shrink;
-  if (start * shrink > (motion + separation) * grow) return true;
-  const double end = std::sqrt(distance2_at(kind, relative, 1, error_relative, floor)) * shrink;
-  return (start + end) * shrink > (motion + 2 * separation) * grow;
+// The filter with a minimum separation s (DESIGN.md §8), in the same frame
+// as `relative`: a contact at t needs d0 <= t m + s and d1 <= (1 - t) m + s,
+// so d0 + d1 > m + 2 s rules it out (d0 > m + s alone does too). The
+// lengths are taken from their certified squares with a margin of 8 u for
+// each root, sum and product.
+template <class T>
+auto separation_filter_culls_within(Kind kind, const Vector3<T> (&relative)[3][2], T error_relative, T floor,
+                                    T separation) {
+  using std::sqrt;
+  const T shrink(SeparationErrors::shrink), grow(SeparationErrors::grow);
+  const T motion = sqrt(largest_displacement2(kind, relative, error_relative, floor)) * grow;
+  const T start = sqrt(distance2_at(kind, relative, 0, error_relative, floor)) * shrink;
+  const auto apart_at_start = start * shrink > (motion + separation) * grow;
+  if (all_of(apart_at_start)) return apart_at_start;
+  const T end = sqrt(distance2_at(kind, relative, 1, error_relative, floor)) * shrink;
+  // Either test alone rules a contact out (neither implies the other).
+  using Verdict = decltype(apart_at_start);  // bool, or a mask of lanes
+  return Verdict(apart_at_start | ((start + end) * shrink > (motion + T(2) * separation) * grow));
 }
 
 }  // namespace batchccd::reference

@@ -2,7 +2,7 @@
 
 #include "reference/bernstein.hpp"
 #include "reference/error_bounds.hpp"
-#include "reference/scaled_query.hpp"
+#include "batchccd/query.hpp"
 
 // The algebraic non-penetration filter (DESIGN.md §2): a certified sign test
 // on the Bernstein coefficients, branch-free so it runs unchanged in SIMD
@@ -51,14 +51,16 @@ struct SignTest {
 // bound zero). The magnitudes are bounded either way and the bounds' scales
 // zeroed when uncertified: one path, where a branch between the two made
 // the lane kernels keep the whole test on the stack.
+// coefficient_relative: the coefficients' relative error bound, the
+// frames' differences' by default (interpolated inputs need more).
 template <class T>
 SignTest<T> sign_test(const Vector3<T> (&r)[3][2], const T (&largest)[3][2], T coefficient_floor,
-                      bool certified) {
+                      bool certified, double coefficient_relative = coefficient_error(0.0).relative) {
   SignTest<T> test{bernstein_cubic(r[0][0], r[0][1], r[1][0], r[1][1], r[2][0], r[2][1]), T(0), T(0), T(0),
                    T(0)};
   const auto& n = largest;
   bernstein_magnitude_bounds(test.cubic, n[0][0], n[0][1], n[1][0], n[1][1], n[2][0], n[2][1]);
-  const ErrorModel whole = coefficient_error(0.0), half = half_coefficient_error(whole);
+  const ErrorModel whole{coefficient_relative, 0.0}, half = half_coefficient_error(whole);
   const double scale = certified ? 1.0 : 0.0;  // 0 * a finite magnitude: a zero bound
   test.relative = T(scale * whole.relative), test.floor = T(scale) * coefficient_floor;
   test.half_relative = T(scale * half.relative), test.half_floor = T(scale * kHalfWeightSum) * coefficient_floor;
@@ -78,16 +80,57 @@ auto sign_filter_culls(const Vector3<T> (&relative)[3][2], const T (&largest)[3]
   return whole | test.halves();
 }
 
-// The sign test with a minimum separation s > 0 (DESIGN.md §8), where the
+// The sign test with a minimum separation s (DESIGN.md §8), where the
 // cubic's signs alone prove nothing: primitives can come within s without
 // ever being coplanar. The distance between them is at least the distance
 // |d(t)| / |n(t)| to the triangle's plane (VF, n = x21 x x31) or between the
 // edges' lines (EE, n = x21 x x43). Where d's Bernstein coefficients share
 // a sign, |d(t)| is at least the smallest of them; |n(t)| is at most the
-// largest of the quadratic n's three Bernstein control points; so
-// min |b_k| > s max |n_j| rules out a contact on [0, 1]. (Where n vanishes
-// so does d, and nothing is culled.) Certified like the cubic, in the scaled
-// frame: scalar only.
-bool plane_distance_culls(Kind kind, const ScaledQuery& query, double separation, bool certified);
+// largest of the quadratic n's three Bernstein control points, and a
+// control point's length at most its L1 norm; so
+// min |b_k| > s max |n_j|_1 rules out a contact on [0, 1]. (Where n
+// vanishes so does d, and nothing is culled.) With s = 0 it is the whole
+// interval's sign test. Inputs as sign_test's, s in the same frame; written
+// once over T for the scalar path and the lanes.
+template <class T>
+auto plane_distance_culls(Kind kind, const Vector3<T> (&r)[3][2], const T (&largest)[3][2],
+                          T coefficient_floor, bool certified, T separation,
+                          double coefficient_relative = coefficient_error(0.0).relative) {
+  using std::abs;
+  const SignTest<T> test = sign_test(r, largest, coefficient_floor, certified, coefficient_relative);
+  // n = a x b, both linear: VF a = x21, b = x31; EE a = x21, b = x43.
+  const bool vertex_face = kind == Kind::vertex_face;
+  const Vector3<T> b0 = vertex_face ? r[1][0] : r[2][0] - r[1][0];
+  const Vector3<T> b1 = vertex_face ? r[1][1] : r[2][1] - r[1][1];
+  const T nb0 = vertex_face ? largest[1][0] : largest[2][0] + largest[1][0];
+  const T nb1 = vertex_face ? largest[1][1] : largest[2][1] + largest[1][1];
+  const T na0 = largest[0][0], na1 = largest[0][1];
+  const Vector3<T> control[3] = {cross(r[0][0], b0), cross(r[0][0], b1) + cross(r[0][1], b0),  // twice n_1
+                                 cross(r[0][1], b1)};
+  // A component adds two products of factors below na nb: inputs with 2
+  // roundings (the frame's difference, EE's b), a product, a difference and
+  // n_1's sum: 5 u of 2 na nb, bounded by 16 u; underflow within the floor.
+  const T scale(certified ? 1.0 : 0.0);
+  const T relative = scale * T(32 * kUnitRoundoff);
+  const T component_error[3] = {relative * na0 * nb0 + test.floor, relative * (na0 * nb1 + na1 * nb0) + test.floor,
+                                relative * na1 * nb1 + test.floor};
+  T largest_normal(0);
+  for (int j = 0; j < 3; ++j) {
+    const T l1 = abs(control[j].x) + abs(control[j].y) + abs(control[j].z) + T(3) * component_error[j];
+    largest_normal = max_of(largest_normal, j == 1 ? T(0.5) * l1 : l1);
+  }
+  // The coefficients are the Bernstein ones times (1, 3, 3, 1); the
+  // threshold's sums and products round by less than 8 u.
+  const T reach = separation * largest_normal * T(1 + 8 * kUnitRoundoff);
+  const T weight[4] = {T(1), T(3), T(3), T(1)};
+  auto positive = test.cubic.coefficient[0] > reach + test.relative * test.cubic.magnitude[0] + test.floor;
+  auto negative = test.cubic.coefficient[0] < -(reach + test.relative * test.cubic.magnitude[0] + test.floor);
+  for (int k = 1; k < 4; ++k) {
+    const T threshold = weight[k] * reach + test.relative * test.cubic.magnitude[k] + test.floor;
+    positive = positive & (test.cubic.coefficient[k] > threshold);
+    negative = negative & (test.cubic.coefficient[k] < -threshold);
+  }
+  return positive | negative;
+}
 
 }  // namespace batchccd::reference
