@@ -701,6 +701,21 @@ TEST_F(IoTest, CandidateListsReadWithOptionalSpaces) {
   EXPECT_EQ(read_edge_edge_pairs(write("ee.csv", "0,1,2,3\n2147483647, 4,5 ,6")),
             (std::vector<std::array<int, 4>>{{0, 1, 2, 3}, {2147483647, 4, 5, 6}}));
   EXPECT_TRUE(read_vertex_face_pairs(write("empty.csv", "")).empty());
+  EXPECT_EQ(read_vertex_edge_triples(write("ve.csv", "0,1,2\n 7 , 8,9\r\n")),
+            (std::vector<std::array<int, 3>>{{0, 1, 2}, {7, 8, 9}}));
+  EXPECT_EQ(read_vertex_vertex_pairs(write("vv.csv", "4,5\n5,5\n")),
+            (std::vector<std::array<int, 2>>{{4, 5}, {5, 5}}));
+}
+
+TEST_F(IoTest, MalformedPointCandidateListsNameTheLine) {
+  const fs::path ve = write("ve.csv", "0,1,2\n0,1\n");
+  EXPECT_TRUE(fails_with([&] { read_vertex_edge_triples(ve); }, ve, 2, "expected 3 comma-separated ids, found 2"));
+  write("ve.csv", "0,1,2\n0,1,2\n0,1,-2\n");
+  EXPECT_TRUE(fails_with([&] { read_vertex_edge_triples(ve); }, ve, 3, "column 3: negative id '-2'"));
+  const fs::path vv = write("vv.csv", "0,1\n0,1,2\n");
+  EXPECT_TRUE(fails_with([&] { read_vertex_vertex_pairs(vv); }, vv, 2, "expected 2 comma-separated ids, found 3"));
+  write("vv.csv", "0,1\n\n1,0\n");
+  EXPECT_TRUE(fails_with([&] { read_vertex_vertex_pairs(vv); }, vv, 2, "empty line"));
 }
 
 TEST_F(IoTest, MalformedCandidateListsNameTheLine) {
@@ -774,8 +789,47 @@ TEST_F(IoTest, SceneWithoutCandidateFilesHasEmptyLists) {
   const Scene scene = read_scene(directory_);
   EXPECT_TRUE(scene.candidates.vertex_face.empty());
   EXPECT_TRUE(scene.candidates.edge_edge.empty());
+  EXPECT_TRUE(scene.candidates.vertex_edge.empty());
+  EXPECT_TRUE(scene.candidates.vertex_vertex.empty());
   EXPECT_FALSE(scene.vertex_face_truth.has_value());
   EXPECT_FALSE(scene.edge_edge_truth.has_value());
+  EXPECT_FALSE(scene.vertex_edge_truth.has_value());
+  EXPECT_FALSE(scene.vertex_vertex_truth.has_value());
+}
+
+TEST_F(IoTest, SceneReadsPointEdgeAndPointPointCandidates) {
+  write_scene_meshes(directory_);
+  write("ve.csv", "0,1,2\n3,2,1\n");
+  write("vv.csv", "0,3\n");
+  write("ve_truth.txt", "0\n1\n");
+  write("vv_truth.txt", "[false]");
+  const Scene scene = read_scene(directory_);
+  EXPECT_EQ(scene.candidates.vertex_edge, (std::vector<std::array<int, 3>>{{0, 1, 2}, {3, 2, 1}}));
+  EXPECT_EQ(scene.candidates.vertex_vertex, (std::vector<std::array<int, 2>>{{0, 3}}));
+  EXPECT_EQ(scene.vertex_edge_truth, (std::vector<bool>{false, true}));
+  EXPECT_EQ(scene.vertex_vertex_truth, std::vector<bool>{false});
+  EXPECT_TRUE(scene.candidates.vertex_face.empty());
+  EXPECT_FALSE(scene.edge_edge_truth.has_value());
+}
+
+TEST_F(IoTest, ScenePointCandidatesAreCheckedAgainstTheMesh) {
+  write_scene_meshes(directory_);
+  const fs::path ve = write("ve.csv", "0,1,2\n3,4,1\n");
+  EXPECT_TRUE(
+      fails_with([&] { read_scene(directory_); }, ve, 2, "vertex id 4 is out of range (the mesh has 4 vertices)"));
+  write("ve.csv", "0,1,2\n0,1\n");
+  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, ve, 2, "expected 3 comma-separated ids"));
+  write("ve.csv", "0,1,2\n");
+  const fs::path vv = write("vv.csv", "0,1\n2,3\n9,0\n");
+  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, vv, 3, "vertex id 9 is out of range"));
+  write("vv.csv", "0,1\n");
+  const fs::path ve_truth = write("ve_truth.txt", "1\n0\n");
+  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, ve_truth, 0, "has 2 entries but ve.csv has 1 candidates"));
+  fs::remove(ve_truth);
+  const fs::path vv_truth = write("vv_truth.txt", "1\nyes\n");
+  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, vv_truth, 2, "expected 0 or 1, found 'yes'"));
+  write("vv_truth.txt", "[]");
+  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, vv_truth, 0, "has 0 entries but vv.csv has 1 candidates"));
 }
 
 TEST_F(IoTest, SceneIndicesAreCheckedAgainstTheMesh) {

@@ -89,12 +89,14 @@ struct PlyMesh {
 // range.
 PlyMesh read_ply(const std::filesystem::path& path);
 
-// Candidate lists: "vertex,face" or "a0,a1,b0,b1" a line, no header; ids
-// are 0-based. Throws InputError on a wrong field count, a negative or
-// non-integer id, an id too large for an int, an empty line. Ids are not
-// checked against a mesh here (read_scene does).
+// Candidate lists: "vertex,face", "a0,a1,b0,b1", "vertex,e0,e1" or "p,q" a
+// line, no header; ids are 0-based. Throws InputError on a wrong field
+// count, a negative or non-integer id, an id too large for an int, an empty
+// line. Ids are not checked against a mesh here (read_scene does).
 std::vector<std::array<int, 2>> read_vertex_face_pairs(const std::filesystem::path& path);
 std::vector<std::array<int, 4>> read_edge_edge_pairs(const std::filesystem::path& path);
+std::vector<std::array<int, 3>> read_vertex_edge_triples(const std::filesystem::path& path);
+std::vector<std::array<int, 2>> read_vertex_vertex_pairs(const std::filesystem::path& path);
 
 // A scene directory's contents, ready for mesh_ccd:
 //   mesh_ccd({scene.positions_t0, scene.positions_t1, scene.faces}, scene.candidates)
@@ -106,15 +108,18 @@ struct Scene {
   Candidates candidates;
   std::optional<std::vector<bool>> vertex_face_truth;
   std::optional<std::vector<bool>> edge_edge_truth;
+  std::optional<std::vector<bool>> vertex_edge_truth;
+  std::optional<std::vector<bool>> vertex_vertex_truth;
 };
 
 // A directory holding t0.ply and t1.ply. Never throws (false when the path
 // cannot be examined).
 bool is_scene_directory(const std::filesystem::path& path);
 
-// t0.ply, t1.ply (same vertex count, faces from t0.ply), vf.csv and ee.csv
-// (either may be absent: an empty list), vf_truth.txt and ee_truth.txt
-// (optional; their length must match). Every index is checked against the mesh.
+// t0.ply, t1.ply (same vertex count, faces from t0.ply), vf.csv, ee.csv,
+// ve.csv and vv.csv (any may be absent: an empty list), vf_truth.txt,
+// ee_truth.txt, ve_truth.txt and vv_truth.txt (optional; their length must
+// match). Every index is checked against the mesh.
 // Throws InputError when the directory is not a scene directory, a file is
 // malformed, the vertex counts differ, an id is out of range or a truth
 // file's length does not match its candidate list.
