@@ -1,6 +1,7 @@
 // The installed `batchccd` executable: its command line (CLI11). The work is
 // done by run_inputs (run.hpp) and shown by report_format.hpp.
 
+#include <charconv>
 #include <exception>
 #include <iostream>
 #include <optional>
@@ -16,6 +17,7 @@
 #include "command_line.hpp"
 #include "report_format.hpp"
 #include "run.hpp"
+#include "text_output.hpp"
 
 namespace {
 
@@ -27,15 +29,31 @@ constexpr int exit_input_error = 1;
 constexpr int exit_usage_error = 2;
 
 constexpr const char* run_footer = R"(INPUT is one of
-  a query CSV   8 rows a query; columns x_num,x_den,y_num,y_den,z_num,z_den
-                and optionally truth (0/1)
-  a scene       a directory holding t0.ply and t1.ply, with vf.csv, ee.csv and
-                optionally vf_truth.txt, ee_truth.txt; gives a vf and an ee result
+  a query CSV   a query's points at t0, then its points at t1, one a row:
+                  vf (vertex-face)    8 rows  p a b c, then p a b c
+                  ee (edge-edge)      8 rows  ea0 ea1 eb0 eb1, then the same
+                  ve (vertex-edge)    6 rows  p e0 e1, then p e0 e1
+                  vv (vertex-vertex)  4 rows  p q, then p q
+                columns x_num,x_den,y_num,y_den,z_num,z_den (exact rationals)
+                and optionally truth (0/1, the same on all of a query's rows)
+  a scene       a directory holding t0.ply and t1.ply, with candidate lists
+                vf.csv ("vertex,face" a line), ee.csv ("a0,a1,b0,b1"), ve.csv
+                ("vertex,e0,e1"), vv.csv ("p,q") and optionally vf_truth.txt,
+                ee_truth.txt, ve_truth.txt, vv_truth.txt; gives a vf and an ee
+                result, and a ve and a vv result when it has ve.csv, vv.csv
   a directory   searched recursively for scenes and for *.csv query files whose
                 path names their kind (or any *.csv with --kind); run in sorted
                 path order
-A query file's kind comes from its path: "vertex-face" or a "vf" word is vf,
-"edge-edge" or an "ee" word is ee; --kind gives it otherwise.
+A query file's kind comes from its path (the last component naming one):
+"vertex-face" or a "vf" word is vf, "edge-edge" or an "ee" word is ee,
+"vertex-edge", "point-edge" or a "ve" word is ve, "vertex-vertex",
+"point-point" or a "vv" word is vv; --kind gives it otherwise.
+
+--min-distance D, --tmax T: a contact is the primitives coming within distance
+D of each other (in the data's length units; default 0, touching) at some t in
+[0, T] (T in (0, 1], default 1; a contact after T is not a hit). D >= 0 and
+finite; mode cubic takes D = 0 only. Truth files must be labelled for the same
+D and T.
 
 --truth FILE: ground truth for a single query file, replacing its truth
 column: a JSON array of booleans, or one 0/1 a line.
@@ -48,27 +66,61 @@ Modes:
   exact         decisions equal to exact arithmetic, TOI within 1e-12 before
                 the first contact
 
-JSON fields (--json, one object per input and kind): input, kind, mode, isa
-(the one used), threads, queries, hits, positives, false_positives,
-false_negatives (null without truth), culled, seconds (narrow phase alone,
-reading excluded), queries_per_second, exact_escalations (queries whose
-decision or TOI needed exact arithmetic; 0 in fast and cubic mode),
+JSON fields (--json, one object per input and kind): input, kind, mode,
+min_distance, tmax, isa (the one used), threads, queries, hits, positives,
+false_positives, false_negatives (null without truth), culled, seconds (narrow
+phase alone, reading excluded), queries_per_second, exact_escalations (queries
+whose decision or TOI needed exact arithmetic; 0 in fast and cubic mode),
 max_query_seconds (wall-clock time of the slowest single query).
 
 --out FILE: one "hit,toi" line a query (hit 0/1, toi "inf" without a hit) in
-input order, all inputs in the order run, a scene's vf candidates before its
-ee ones; replaced atomically.
+input order, all inputs in the order run, a scene's vf candidates, then its ee,
+ve and vv ones; replaced atomically.
 
 Exit status: 0 success; 1 an input could not be read (reported on stderr, the
 other inputs still run) or the instruction set is not available; 2 a bad
-command line.)";
+command line (a bad --min-distance or --tmax too).)";
 
 struct RunCommand {
   std::vector<std::string> inputs;
   std::string kind, truth, mode = "conservative", isa = "auto", out;
   int threads = 0;
   bool json = false;
+  double min_distance = 0;
+  double tmax = 1;
 };
+
+// Options::validate's message without its "batchccd: " prefix: the command
+// line prefixes its own.
+std::string validation_message(const std::invalid_argument& error) {
+  std::string message = error.what();
+  const std::string prefix = "batchccd: ";
+  if (message.starts_with(prefix)) message.erase(0, prefix.size());
+  return message;
+}
+
+// A number for one Options field, refused with batchccd::validate's own
+// message, so the tool and the library say the same.
+CLI::Validator options_number(double batchccd::Options::*field, const char* description) {
+  return CLI::Validator(
+      [field](std::string& text) -> std::string {
+        double value = 0;
+        const char* const end = text.data() + text.size();
+        const auto [stop, error] = std::from_chars(text.data(), end, value);
+        if (error == std::errc::result_out_of_range)
+          return "'" + text + "' is out of the range of a double";
+        if (error != std::errc() || stop != end) return "needs a number, not '" + text + "'";
+        batchccd::Options options;
+        options.*field = value;
+        try {
+          batchccd::validate(options);
+        } catch (const std::invalid_argument& refused) {
+          return validation_message(refused);
+        }
+        return {};
+      },
+      description);
+}
 
 void add_run_command(CLI::App& app, RunCommand& command) {
   CLI::App* run = app.add_subcommand("run", "evaluate query files and scenes, report counts and timing");
@@ -80,6 +132,11 @@ void add_run_command(CLI::App& app, RunCommand& command) {
   run->add_option("--truth", command.truth, "ground truth for a single query file (below)");
   run->add_option("--mode", command.mode, "how decisions are made (below)")
       ->check(CLI::IsMember(names_of(batchccd::mode_names())));
+  run->add_option("--min-distance", command.min_distance,
+                  "separation that counts as a contact (below; default 0)")
+      ->check(options_number(&batchccd::Options::min_distance, "D>=0"));
+  run->add_option("--tmax", command.tmax, "end of the time window (below; default 1)")
+      ->check(options_number(&batchccd::Options::tmax, "T in (0,1]"));
   run->add_option("--threads", command.threads, "worker threads (default: all)")
       ->check(positive_integer);
   run->add_option("--isa", command.isa, "instruction set (auto: the best available)")
@@ -110,7 +167,19 @@ int run_command(const RunCommand& command) {
   settings.options.mode = *batchccd::mode_from_string(command.mode);
   settings.options.isa = *batchccd::isa_from_string(command.isa);
   settings.options.threads = command.threads;
+  settings.options.min_distance = command.min_distance;
+  settings.options.tmax = command.tmax;
   settings.keep_results = !command.out.empty();
+  try {
+    // Each value passed alone; together they may still clash (cubic with D > 0).
+    batchccd::validate(settings.options);
+  } catch (const std::invalid_argument& error) {
+    std::cerr << "batchccd run: --min-distance " << batchccd::cli::round_trip_decimal(command.min_distance)
+              << " with --mode "
+              << command.mode << ": " << validation_message(error)
+              << "\nRun 'batchccd run --help' for usage.\n";
+    return exit_usage_error;
+  }
   try {
     // Refused once here rather than once per input.
     batchccd::resolve_isa(settings.options.isa);
@@ -157,8 +226,8 @@ int info_command(bool json) {
 }
 
 int main_of(int argc, char** argv) {
-  CLI::App app("Continuous collision detection over batches of vertex-face (vf) and edge-edge "
-               "(ee) queries.",
+  CLI::App app("Continuous collision detection over batches of vertex-face (vf), edge-edge (ee), "
+               "point-edge (ve) and point-point (vv) queries.",
                "batchccd");
   app.set_version_flag("--version", std::string("batchccd ") + BATCHCCD_VERSION);
   app.require_subcommand(1);

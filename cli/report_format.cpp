@@ -21,6 +21,8 @@ nlohmann::ordered_json json_object(const InputReport& report) {
   object["input"] = report.input;
   object["kind"] = to_string(report.kind);
   object["mode"] = to_string(report.mode);
+  object["min_distance"] = report.min_distance;
+  object["tmax"] = report.tmax;
   object["isa"] = to_string(report.isa);
   object["threads"] = report.threads;
   object["queries"] = report.queries;
@@ -106,9 +108,11 @@ Row totals_row(const std::vector<InputReport>& reports) {
 
 void print_table(std::ostream& out, const std::vector<InputReport>& reports) {
   if (reports.empty()) return;
-  // Mode, instruction set and threads are the same for every row of a run.
+  // Mode, separation, time window, instruction set and threads are the same
+  // for every row of a run.
   const InputReport& first = reports.front();
-  out << "mode " << to_string(first.mode) << ", isa " << to_string(first.isa) << ", threads "
+  out << "mode " << to_string(first.mode) << ", min_distance " << round_trip_decimal(first.min_distance)
+      << ", tmax " << round_trip_decimal(first.tmax) << ", isa " << to_string(first.isa) << ", threads "
       << first.threads << '\n';
   std::vector<Row> rows;
   for (const InputReport& report : reports) rows.push_back(table_row(report));

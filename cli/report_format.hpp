@@ -13,7 +13,7 @@
 // the per-query results file of --out.
 namespace batchccd::cli {
 
-// input, kind, mode, isa, threads, queries, hits, positives,
+// input, kind, mode, min_distance, tmax, isa, threads, queries, hits, positives,
 // false_positives, false_negatives (null without ground truth), culled,
 // seconds, queries_per_second, exact_escalations, max_query_seconds.
 nlohmann::ordered_json json_object(const InputReport& report);

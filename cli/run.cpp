@@ -46,8 +46,8 @@ std::vector<FoundInput> find_inputs_in_directory(const fs::path& root,
             [](const FoundInput& a, const FoundInput& b) { return a.path < b.path; });
   if (found.empty()) {
     throw InputError(root.string(), 0,
-                     "no query files (*.csv under a path naming vertex-face/vf or "
-                     "edge-edge/ee) and no scenes found");
+                     "no query files (*.csv under a path naming vertex-face/vf, edge-edge/ee, "
+                     "vertex-edge/ve or vertex-vertex/vv) and no scenes found");
   }
   return found;
 }
@@ -98,6 +98,8 @@ InputReport make_report(std::string input, Kind kind, std::size_t query_count,
   report.input = std::move(input);
   report.kind = kind;
   report.mode = options.mode;
+  report.min_distance = options.min_distance;
+  report.tmax = options.tmax;
   report.isa = resolve_isa(options.isa);
   report.threads = threads_asked(options);
   report.queries = static_cast<std::int64_t>(query_count);
@@ -137,29 +139,53 @@ std::vector<InputReport> run_query_file(const fs::path& file, const RunSettings&
                       options, queries.truth)};
 }
 
-InputReport run_scene_kind(const Scene& scene, Kind kind, const RunSettings& settings) {
-  const bool vertex_face = kind == Kind::vertex_face;
-  const auto& truth = vertex_face ? scene.vertex_face_truth : scene.edge_edge_truth;
-  const std::size_t count = vertex_face ? scene.candidates.vertex_face.size()
-                                        : scene.candidates.edge_edge.size();
-  // One kind per call, so that time and counters are per kind.
-  Options options = options_for_call(settings, truth.has_value());
-  options.vertex_face = vertex_face;
-  options.edge_edge = !vertex_face;
-  const MeshView mesh{scene.positions_t0, scene.positions_t1, scene.faces};
-  TimedResult timed_result = timed([&] { return mesh_ccd(mesh, scene.candidates, options); });
-  return make_report(scene.path, kind, count, std::move(timed_result), options, truth);
+// A scene's candidate list and truth of one kind.
+struct SceneList {
+  std::size_t count;
+  const std::optional<std::vector<bool>>& truth;
+};
+
+SceneList scene_list(const Scene& scene, Kind kind) {
+  switch (kind) {
+    case Kind::vertex_face: return {scene.candidates.vertex_face.size(), scene.vertex_face_truth};
+    case Kind::edge_edge: return {scene.candidates.edge_edge.size(), scene.edge_edge_truth};
+    case Kind::vertex_edge: return {scene.candidates.vertex_edge.size(), scene.vertex_edge_truth};
+    case Kind::vertex_vertex: break;
+  }
+  return {scene.candidates.vertex_vertex.size(), scene.vertex_vertex_truth};
 }
 
+InputReport run_scene_kind(const Scene& scene, Kind kind, const RunSettings& settings) {
+  const SceneList list = scene_list(scene, kind);
+  // One kind per call, so that time and counters are per kind.
+  Options options = options_for_call(settings, list.truth.has_value());
+  options.vertex_face = kind == Kind::vertex_face;
+  options.edge_edge = kind == Kind::edge_edge;
+  options.vertex_edge = kind == Kind::vertex_edge;
+  options.vertex_vertex = kind == Kind::vertex_vertex;
+  const MeshView mesh{scene.positions_t0, scene.positions_t1, scene.faces};
+  TimedResult timed_result = timed([&] { return mesh_ccd(mesh, scene.candidates, options); });
+  return make_report(scene.path, kind, list.count, std::move(timed_result), options, list.truth);
+}
+
+// vf and ee always (an absent list is an empty one, as ever); ve and vv when
+// the scene has their file, so that triangle-mesh scenes report as before.
 std::vector<InputReport> run_scene(const fs::path& directory, const RunSettings& settings) {
   if (settings.truth) {
     throw InputError(directory.string(), 0,
-                     "--truth is for query files; a scene has vf_truth.txt and ee_truth.txt");
+                     "--truth is for query files; a scene has vf_truth.txt, ee_truth.txt, "
+                     "ve_truth.txt and vv_truth.txt");
   }
   Scene scene = read_scene(directory);
   scene.path = directory.string();  // report the path as given
-  return {run_scene_kind(scene, Kind::vertex_face, settings),
-          run_scene_kind(scene, Kind::edge_edge, settings)};
+  std::vector<InputReport> reports{run_scene_kind(scene, Kind::vertex_face, settings),
+                                   run_scene_kind(scene, Kind::edge_edge, settings)};
+  std::error_code unreadable;
+  if (fs::is_regular_file(directory / "ve.csv", unreadable))
+    reports.push_back(run_scene_kind(scene, Kind::vertex_edge, settings));
+  if (fs::is_regular_file(directory / "vv.csv", unreadable))
+    reports.push_back(run_scene_kind(scene, Kind::vertex_vertex, settings));
+  return reports;
 }
 
 // Readers name file and line in their message; other failures get the input.
@@ -187,7 +213,8 @@ Kind kind_of_query_file(const fs::path& file, const std::optional<Kind>& fallbac
   if (auto named = kind_from_path(file)) return *named;
   if (fallback_kind) return *fallback_kind;
   throw InputError(file.string(), 0,
-                   "the path names no kind (vertex-face/vf or edge-edge/ee): use --kind");
+                   "the path names no kind (vertex-face/vf, edge-edge/ee, vertex-edge/ve or "
+                   "vertex-vertex/vv): use --kind");
 }
 
 std::vector<FoundInput> find_inputs(const fs::path& input, const std::optional<Kind>& fallback_kind,

@@ -22,17 +22,20 @@ struct RunSettings {
   std::optional<Kind> kind;
   // --truth: ground truth for query files (replaces a truth column).
   std::optional<std::filesystem::path> truth;
-  // mode, isa and threads as given; the per-call switches are set per input.
+  // mode, min_distance, tmax, isa and threads as given; the per-call
+  // switches are set per input.
   Options options;
   // Keep every query's result in InputReport::results (--out needs them).
   bool keep_results = false;
 };
 
-// The outcome of one input and one kind (a scene gives two).
+// The outcome of one input and one kind (a scene gives two to four).
 struct InputReport {
   std::string input;  // the path as given or as found under a directory
   Kind kind = Kind::vertex_face;
   Mode mode = Mode::conservative;
+  double min_distance = 0;  // Options::min_distance and tmax of the call
+  double tmax = 1;
   Isa isa = Isa::scalar;  // the instruction set actually used
   int threads = 1;        // worker threads asked of the library
   std::int64_t queries = 0;

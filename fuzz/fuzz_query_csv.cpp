@@ -11,18 +11,28 @@
 #include "fuzz_check.hpp"
 #include "fuzz_input_file.hpp"
 
+// Every kind reads the same bytes: the point kinds have other row counts
+// (ve 6, vv 4) and fill Query's repeated slots (query.hpp).
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using batchccd::fuzz::require;
-  try {
-    const batchccd::QueryFile file =
-        batchccd::read_query_csv(batchccd::fuzz::as_input_file(data, size), batchccd::Kind::edge_edge);
-    require(file.kind == batchccd::Kind::edge_edge, "the kind asked for is kept");
-    if (file.truth) require(file.truth->size() == file.queries.size(), "one truth per query");
-    for (const batchccd::Query& query : file.queries)
-      for (const batchccd::Vec3& point : query.points)
-        require(point.allFinite(), "every coordinate read is finite");
-  } catch (const batchccd::InputError&) {
-    // refused clearly: the documented outcome for bad input
+  using batchccd::Kind;
+  for (const Kind kind : {Kind::vertex_face, Kind::edge_edge, Kind::vertex_edge, Kind::vertex_vertex}) {
+    try {
+      const batchccd::QueryFile file = batchccd::read_query_csv(batchccd::fuzz::as_input_file(data, size), kind);
+      require(file.kind == kind, "the kind asked for is kept");
+      if (file.truth) require(file.truth->size() == file.queries.size(), "one truth per query");
+      for (const batchccd::Query& query : file.queries) {
+        for (const batchccd::Vec3& point : query.points) require(point.allFinite(), "every coordinate read is finite");
+        if (kind == Kind::vertex_edge || kind == Kind::vertex_vertex)
+          require(query.points[0] == query.points[1] && query.points[4] == query.points[5],
+                  "the point is a zero-length edge");
+        if (kind == Kind::vertex_vertex)
+          require(query.points[2] == query.points[3] && query.points[6] == query.points[7],
+                  "the other point too");
+      }
+    } catch (const batchccd::InputError&) {
+      // refused clearly: the documented outcome for bad input
+    }
   }
   return 0;
 }

@@ -5,12 +5,15 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -78,6 +81,31 @@ const std::string vertex_face_hit_and_miss =
 const std::string edge_edge_hit_and_miss =
     query_csv({{edge_edge_hit, true}, {edge_edge_miss, false}});
 
+// A query of a point kind: its points at t0, then at t1, each once (ve 6
+// rows, vv 4), with its truth.
+struct PointQuery {
+  std::vector<QuarterPoint> points;
+  bool truth;
+};
+
+std::string point_query_csv(const std::vector<PointQuery>& queries) {
+  std::ostringstream text;
+  for (const PointQuery& query : queries)
+    for (const QuarterPoint& point : query.points)
+      text << point.x << ",4," << point.y << ",4," << point.z << ",4," << (query.truth ? 1 : 0) << '\n';
+  return text.str();
+}
+
+// p falls through the static edge (0,0,0)-(1,0,0) at t = 1/2.
+const PointQuery vertex_edge_hit{{{2, 0, 4}, {0, 0, 0}, {4, 0, 0}, {2, 0, -4}, {0, 0, 0}, {4, 0, 0}}, true};
+// p stays far from the edge.
+const PointQuery vertex_edge_miss{{{2, 40, 4}, {0, 0, 0}, {4, 0, 0}, {2, 40, -4}, {0, 0, 0}, {4, 0, 0}}, false};
+// p falls through the still point q at the origin at t = 1/2.
+const PointQuery vertex_vertex_hit{{{0, 0, 4}, {0, 0, 0}, {0, 0, -4}, {0, 0, 0}}, true};
+// p passes the still point q at the origin 1/4 away at t = 1/2: a contact
+// exactly when the minimum distance is at least 1/4.
+PointQuery vertex_vertex_pass(bool truth) { return {{{-4, 1, 0}, {0, 0, 0}, {4, 1, 0}, {0, 0, 0}}, truth}; }
+
 void write_file(const fs::path& path, const std::string& content) {
   fs::create_directories(path.parent_path());
   std::ofstream(path, std::ios::binary) << content;
@@ -131,7 +159,7 @@ std::map<std::string, std::string> parse_json_line(const std::string& line) {
 }
 
 const std::vector<std::string> json_field_names = {
-    "input",     "kind",           "mode",           "isa",
+    "input",     "kind",           "mode",           "min_distance", "tmax", "isa",
     "threads",   "queries",        "hits",           "positives",
     "false_positives", "false_negatives", "culled", "seconds",
     "queries_per_second", "exact_escalations", "max_query_seconds"};
@@ -227,7 +255,10 @@ TEST_F(CliTest, HelpDocumentsEveryOption) {
   EXPECT_EQ(run.exit_code, 0);
   for (const char* option : {"--kind", "--truth", "--mode", "--threads", "--isa", "--json",
                              "--out", "conservative", "fast", "cubic", "exact", "avx512",
-                             "INPUT", "exact_escalations", "max_query_seconds", "Exit status"}) {
+                             "INPUT", "exact_escalations", "max_query_seconds", "Exit status",
+                             "--min-distance", "--tmax", "min_distance", "tmax", "point-edge",
+                             "point-point", "vertex-vertex", "8 rows", "6 rows", "4 rows",
+                             "ve.csv", "vv.csv", "vv_truth.txt"}) {
     EXPECT_NE(run.out.find(option), std::string::npos) << option;
   }
 }
@@ -289,6 +320,194 @@ TEST_F(CliTest, DoubleDashEndsTheOptions) {
   EXPECT_EQ(objects[0].at("input"), "-vf.csv");
 }
 
+// What batchccd::validate says of these options (its "batchccd: " prefix
+// left out), or "" when it accepts them.
+std::string validate_message(const batchccd::Options& options) {
+  try {
+    batchccd::validate(options);
+  } catch (const std::invalid_argument& error) {
+    const std::string message = error.what();
+    return message.substr(message.find("Options::"));
+  }
+  return {};
+}
+
+TEST_F(CliTest, BadMinDistanceOrTmaxExitsTwoNamingOptionAndValue) {
+  write_file(path("vf/q.csv"), vertex_face_hit_and_miss);
+  struct Case {
+    std::vector<std::string> arguments;
+    std::string option;
+    std::string problem;  // besides the option
+  };
+  const auto refused = [](double min_distance, double tmax) {
+    batchccd::Options options;
+    options.min_distance = min_distance;
+    options.tmax = tmax;
+    return validate_message(options);
+  };
+  batchccd::Options cubic;
+  cubic.mode = batchccd::Mode::cubic;
+  cubic.min_distance = 0.001;
+  const std::vector<Case> cases = {
+      {{"--min-distance", "-1"}, "--min-distance", refused(-1, 1)},
+      {{"--min-distance=-0.5"}, "--min-distance", refused(-0.5, 1)},
+      {{"--min-distance", "nan"}, "--min-distance", refused(std::nan(""), 1)},
+      {{"--min-distance", "inf"}, "--min-distance", refused(std::numeric_limits<double>::infinity(), 1)},
+      {{"--min-distance", "1e999"}, "--min-distance", "'1e999' is out of the range of a double"},
+      {{"--min-distance", "tiny"}, "--min-distance", "needs a number, not 'tiny'"},
+      {{"--min-distance", "1e-3x"}, "--min-distance", "needs a number, not '1e-3x'"},
+      {{"--tmax", "0"}, "--tmax", refused(0, 0)},
+      {{"--tmax", "1.5"}, "--tmax", refused(0, 1.5)},
+      {{"--tmax=-0.25"}, "--tmax", refused(0, -0.25)},
+      {{"--tmax", ""}, "--tmax", "needs a number, not ''"},
+      {{"--mode", "cubic", "--min-distance", "0.001"}, "--min-distance 0.001 with --mode cubic",
+       validate_message(cubic)},
+  };
+  for (const Case& bad : cases) {
+    std::vector<std::string> arguments = {"run"};
+    arguments.insert(arguments.end(), bad.arguments.begin(), bad.arguments.end());
+    arguments.push_back("vf/q.csv");
+    const CliRun result = run_cli(arguments);
+    std::string shown;
+    for (const auto& argument : arguments) shown += argument + " ";
+    ASSERT_FALSE(bad.problem.empty()) << shown;  // validate refuses the value
+    EXPECT_EQ(result.exit_code, 2) << shown << "\n" << result.err;
+    EXPECT_NE(result.err.find("batchccd run: " + bad.option), std::string::npos) << shown << "\n" << result.err;
+    EXPECT_NE(result.err.find(bad.problem), std::string::npos) << shown << "\n" << result.err;
+    EXPECT_TRUE(result.out.empty()) << shown;
+  }
+  // The ends of the ranges are values like any other.
+  for (const std::vector<std::string>& good :
+       {std::vector<std::string>{"--min-distance", "0", "--tmax", "1"},
+        std::vector<std::string>{"--min-distance=1e300", "--tmax=4.9e-324"},
+        std::vector<std::string>{"--mode", "cubic", "--min-distance", "0"}}) {
+    std::vector<std::string> arguments = {"run"};
+    arguments.insert(arguments.end(), good.begin(), good.end());
+    arguments.push_back("vf/q.csv");
+    EXPECT_EQ(run_cli(arguments).exit_code, 0) << good[0];
+  }
+}
+
+// The separation and the time window reach the call: the same queries
+// change their answers where the geometry says they must.
+TEST_F(CliTest, MinDistanceAndTmaxDecide) {
+  write_file(path("vv/pass.csv"), point_query_csv({vertex_vertex_pass(true)}));  // truth for 0.3
+  const auto within = run_json({"--min-distance", "0.3", "vv/pass.csv"});
+  ASSERT_EQ(within.size(), 1u);
+  EXPECT_EQ(within[0].at("min_distance"), "0.3");
+  EXPECT_EQ(within[0].at("hits"), "1");
+  EXPECT_EQ(within[0].at("false_negatives"), "0");
+  for (const char* mode : {"exact", "fast"}) {
+    const auto other_mode = run_json({"--mode", mode, "--min-distance", "0.3", "vv/pass.csv"});
+    ASSERT_EQ(other_mode.size(), 1u) << mode;
+    EXPECT_EQ(other_mode[0].at("hits"), "1") << mode;
+  }
+  const auto beyond = run_json({"--min-distance", "0.2", "vv/pass.csv"});
+  ASSERT_EQ(beyond.size(), 1u);
+  EXPECT_EQ(beyond[0].at("hits"), "0");
+  EXPECT_EQ(beyond[0].at("false_negatives"), "1");  // labelled for 0.3
+  EXPECT_EQ(run_json({"vv/pass.csv"}).at(0).at("hits"), "0");
+
+  // The vertex-face hit is at t = 1/2.
+  write_file(path("vf/q.csv"), vertex_face_hit_and_miss);
+  const auto cut_off = run_json({"--tmax", "0.25", "vf/q.csv"});
+  ASSERT_EQ(cut_off.size(), 1u);
+  EXPECT_EQ(cut_off[0].at("tmax"), "0.25");
+  EXPECT_EQ(cut_off[0].at("hits"), "0");
+  const auto kept = run_json({"--tmax=0.75", "--out", "results.txt", "vf/q.csv"});
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(kept[0].at("hits"), "1");
+  const auto lines = lines_of(read_file(path("results.txt")));
+  ASSERT_EQ(lines.size(), 2u);
+  ASSERT_EQ(lines[0].rfind("1,", 0), 0u) << lines[0];
+  const double toi = std::stod(lines[0].substr(2));
+  EXPECT_LE(toi, 0.5);
+  EXPECT_GE(toi, 0.5 - 1e-6);
+
+  // The table's first line says both.
+  const CliRun table = run_cli({"run", "--min-distance", "0.3", "--tmax", "0.5", "vv/pass.csv"});
+  EXPECT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_NE(table.out.find("min_distance 0.3, tmax 0.5"), std::string::npos) << table.out;
+}
+
+TEST_F(CliTest, PointEdgeAndPointPointQueryFiles) {
+  write_file(path("data/point-edge/q.csv"), point_query_csv({vertex_edge_hit, vertex_edge_miss}));
+  write_file(path("data/vv/q.csv"), point_query_csv({vertex_vertex_pass(false), vertex_vertex_hit}));
+  const auto objects = run_json({"--out", "results.txt", "data"});
+  ASSERT_EQ(objects.size(), 2u);
+  EXPECT_EQ(objects[0].at("input"), "data/point-edge/q.csv");
+  EXPECT_EQ(objects[0].at("kind"), "ve");
+  EXPECT_EQ(objects[1].at("kind"), "vv");
+  for (const auto& object : objects) {
+    EXPECT_EQ(object.size(), json_field_names.size());
+    EXPECT_EQ(object.at("queries"), "2");
+    EXPECT_EQ(object.at("hits"), "1");
+    EXPECT_EQ(object.at("false_positives"), "0");
+    EXPECT_EQ(object.at("false_negatives"), "0");
+  }
+  const auto lines = lines_of(read_file(path("results.txt")));
+  ASSERT_EQ(lines.size(), 4u);
+  EXPECT_EQ(lines[0].rfind("1,", 0), 0u);
+  EXPECT_EQ(lines[1], "0,inf");
+  EXPECT_EQ(lines[2], "0,inf");
+  EXPECT_EQ(lines[3].rfind("1,", 0), 0u);
+
+  // A file that names no kind takes --kind; read as another kind, its rows
+  // do not divide into queries.
+  write_file(path("plain.csv"), point_query_csv({vertex_edge_hit}));
+  EXPECT_EQ(run_json({"--kind", "ve", "plain.csv"}).at(0).at("hits"), "1");
+  const CliRun as_vv = run_cli({"run", "--kind", "vv", "plain.csv"});
+  EXPECT_EQ(as_vv.exit_code, 1);
+  EXPECT_NE(as_vv.err.find("plain.csv:6: row count 6 is not a multiple of 4"), std::string::npos) << as_vv.err;
+}
+
+// write_scene plus point-edge and point-point candidates, labelled for a
+// minimum distance of 0.4 (the vf and ee labels hold there too): vertex 3
+// passes edge 0-1 0.25 away and vertex 0 0.354 away; 6 and 7 stay far.
+void write_point_scene(const fs::path& directory) {
+  write_scene(directory);
+  write_file(directory / "ve.csv", "3,0,1\n3,6,7\n");
+  write_file(directory / "ve_truth.txt", "1\n0\n");
+  write_file(directory / "vv.csv", "6,7\n3,0\n");
+  write_file(directory / "vv_truth.txt", "0\n1\n");
+}
+
+TEST_F(CliTest, SceneWithPointCandidatesGivesFourReports) {
+  write_point_scene(path("scene"));
+  const auto objects = run_json({"--min-distance", "0.4", "--out", "results.txt", "scene"});
+  ASSERT_EQ(objects.size(), 4u);
+  const std::vector<std::string> kinds = {"vf", "ee", "ve", "vv"};
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    EXPECT_EQ(objects[i].at("kind"), kinds[i]);
+    EXPECT_EQ(objects[i].at("input"), "scene");
+    EXPECT_EQ(objects[i].at("queries"), "2") << kinds[i];
+    EXPECT_EQ(objects[i].at("hits"), "1") << kinds[i];
+    EXPECT_EQ(objects[i].at("false_negatives"), "0") << kinds[i];
+    EXPECT_EQ(objects[i].at("false_positives"), "0") << kinds[i];
+  }
+  const auto lines = lines_of(read_file(path("results.txt")));
+  ASSERT_EQ(lines.size(), 8u);
+  EXPECT_EQ(lines[4].rfind("1,", 0), 0u);  // ve 3 against edge 0-1
+  EXPECT_EQ(lines[5], "0,inf");
+  EXPECT_EQ(lines[6], "0,inf");  // vv 6, 7
+  EXPECT_EQ(lines[7].rfind("1,", 0), 0u);
+
+  // Touching, neither point candidate collides.
+  const auto touching = run_json({"scene"});
+  ASSERT_EQ(touching.size(), 4u);
+  EXPECT_EQ(touching[2].at("hits"), "0");
+  EXPECT_EQ(touching[3].at("hits"), "0");
+
+  // An empty ve.csv still gives its (empty) report; a bad id is named with its line.
+  write_file(path("scene/ve.csv"), "");
+  fs::remove(path("scene/ve_truth.txt"));
+  EXPECT_EQ(run_json({"scene"}).at(2).at("queries"), "0");
+  write_file(path("scene/vv.csv"), "6,7\n3,8\n");
+  const CliRun bad = run_cli({"run", "scene"});
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("vv.csv:2: vertex id 8 is out of range"), std::string::npos) << bad.err;
+}
+
 // ---- output -----------------------------------------------------------------
 
 TEST_F(CliTest, JsonHasEveryFieldAndCountsAgainstTruth) {
@@ -303,6 +522,8 @@ TEST_F(CliTest, JsonHasEveryFieldAndCountsAgainstTruth) {
   EXPECT_EQ(object.at("input"), "vertex-face/q.csv");
   EXPECT_EQ(object.at("kind"), "vf");
   EXPECT_EQ(object.at("mode"), "conservative");
+  EXPECT_EQ(object.at("min_distance"), "0.0");
+  EXPECT_EQ(object.at("tmax"), "1.0");
   EXPECT_EQ(object.at("isa"), batchccd::to_string(batchccd::resolve_isa(batchccd::Isa::automatic)));
   EXPECT_EQ(object.at("threads"), "3");
   EXPECT_EQ(object.at("queries"), "2");
@@ -672,6 +893,37 @@ TEST_F(CliTest, EveryBadInputIsToldAndEveryGoodOneReported) {
 }
 
 // ---- the shared data set ----------------------------------------------------------
+
+// The minimum-separation set (its README says how it is labelled): the tool
+// with --min-distance misses no contact in the certified modes.
+TEST_F(CliTest, SharedMinDistanceSetHasNoFalseNegatives) {
+  const fs::path data = fs::path(BATCHCCD_SHARED_DATA) / "min-distance" / "unit-ms1e-3";
+  if (!fs::exists(data / "vf.csv") || !fs::exists(data / "ee.csv")) {
+    GTEST_SKIP() << "no shared data at " << data;
+  }
+  // The separation the truth is labelled for.
+  std::ifstream ms_file(data / "ms.txt");
+  double min_distance = -1;
+  ms_file >> min_distance;
+  ASSERT_EQ(min_distance, 0.001);
+  for (const char* mode : {"conservative", "exact"}) {
+    const auto objects = run_json({"--mode", mode, "--min-distance", "1e-3", data.string()});
+    ASSERT_EQ(objects.size(), 2u) << mode;
+    std::int64_t queries = 0;
+    for (const auto& object : objects) {
+      EXPECT_EQ(object.at("min_distance"), "0.001") << mode;
+      EXPECT_EQ(object.at("false_negatives"), "0") << mode << " " << object.at("input");
+      EXPECT_NE(object.at("positives"), "0") << object.at("input");
+      queries += std::stoll(object.at("queries"));
+    }
+    EXPECT_EQ(queries, 250 + 74) << mode;  // the README's counts
+  }
+  // Touching alone misses the contacts the separation adds (README: 18 + 15).
+  std::int64_t missed = 0;
+  for (const auto& object : run_json({"--mode", "exact", data.string()}))
+    missed += std::stoll(object.at("false_negatives"));
+  EXPECT_EQ(missed, 18 + 15);
+}
 
 // The tool's own path over the reference data (the library's is tested in
 // test_shared_data.cpp): every file found, read and counted against its truth.

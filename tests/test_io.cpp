@@ -217,6 +217,17 @@ TEST(KindFromPathTest, ComponentsAndWordsNameTheKind) {
   EXPECT_EQ(kind_from_path("edge-edge/x/data_vf.csv"), Kind::vertex_face);
   EXPECT_EQ(kind_from_path("ee/data.csv"), Kind::edge_edge);
   EXPECT_EQ(kind_from_path("QUERIES-VF.CSV"), Kind::vertex_face);
+  EXPECT_EQ(kind_from_path("data/vertex-edge/data_0_0.csv"), Kind::vertex_edge);
+  EXPECT_EQ(kind_from_path("data/point_edge/q.csv"), Kind::vertex_edge);
+  EXPECT_EQ(kind_from_path("rods/queries_ve.csv"), Kind::vertex_edge);
+  EXPECT_EQ(kind_from_path("data/vertex-vertex/data_0_0.csv"), Kind::vertex_vertex);
+  EXPECT_EQ(kind_from_path("Point-Point.csv"), Kind::vertex_vertex);
+  EXPECT_EQ(kind_from_path("particles/vv.csv"), Kind::vertex_vertex);
+  EXPECT_EQ(kind_from_path("vv/point-edge.csv"), Kind::vertex_edge);      // the last component wins
+  EXPECT_EQ(kind_from_path("vertex-edge-vv.csv"), Kind::vertex_vertex);  // and in it the last mention
+  EXPECT_EQ(kind_from_path("point-face.csv"), std::nullopt);
+  EXPECT_EQ(kind_from_path("vertex--edge.csv"), std::nullopt);  // two separators: no pair
+  EXPECT_EQ(kind_from_path("eve/vvs/data.csv"), std::nullopt);
   EXPECT_EQ(kind_from_path("free/veef/data.csv"), std::nullopt);  // "ee" inside a word is no word
   EXPECT_EQ(kind_from_path("vertex-faces.csv"), std::nullopt);
   EXPECT_EQ(kind_from_path("data.csv"), std::nullopt);
@@ -313,6 +324,72 @@ TEST_F(IoTest, QueryCsvRowCountNotAMultipleOfEight) {
   const fs::path short_path = write("short.csv", "1,2,3,4,5,6\n1,2,3,4,5,6\n");
   EXPECT_TRUE(fails_with([&] { read_query_csv(short_path, Kind::edge_edge); }, short_path, 2,
                          "the last query has 2 of its 8 rows"));
+}
+
+// Rows of a point-kind query file: point k of query q is (8q + k, -(8q + k), 1) / 4.
+std::string point_rows(int queries, int rows_per_query) {
+  std::string text;
+  for (int q = 0; q < queries; ++q)
+    for (int row = 0; row < rows_per_query; ++row) {
+      const int value = 8 * q + row;
+      text += std::to_string(value) + ",4," + std::to_string(-value) + ",4,1,4," + std::to_string(q % 2) + "\n";
+    }
+  return text;
+}
+
+Vec3 point_of_row(int q, int row) { return Vec3(8 * q + row, -(8 * q + row), 1) / 4; }
+
+TEST_F(IoTest, VertexEdgeQueriesHaveSixRowsInQueryLayout) {
+  const fs::path path = write("ve.csv", point_rows(2, 6));
+  const QueryFile file = read_query_csv(path, Kind::vertex_edge);
+  EXPECT_EQ(file.kind, Kind::vertex_edge);
+  ASSERT_EQ(file.queries.size(), 2u);
+  EXPECT_EQ(*file.truth, (std::vector<bool>{false, true}));
+  for (int q = 0; q < 2; ++q) {
+    // p, e0, e1 at t0 (rows 0-2), at t1 (rows 3-5); the point is a zero-length edge.
+    const std::array<int, 8> rows{0, 0, 1, 2, 3, 3, 4, 5};
+    for (int k = 0; k < 8; ++k) EXPECT_EQ(file.queries[q].points[k], point_of_row(q, rows[k])) << q << " " << k;
+    const std::array<Vec3, 3> t0{point_of_row(q, 0), point_of_row(q, 1), point_of_row(q, 2)};
+    const std::array<Vec3, 3> t1{point_of_row(q, 3), point_of_row(q, 4), point_of_row(q, 5)};
+    EXPECT_EQ(file.queries[q].points, make_query(Kind::vertex_edge, t0, t1).points);
+  }
+}
+
+TEST_F(IoTest, VertexVertexQueriesHaveFourRowsInQueryLayout) {
+  const fs::path path = write("vv.csv", point_rows(3, 4));
+  const QueryFile file = read_query_csv(path, Kind::vertex_vertex);
+  ASSERT_EQ(file.queries.size(), 3u);
+  EXPECT_EQ(*file.truth, (std::vector<bool>{false, true, false}));
+  const std::array<int, 8> rows{0, 0, 1, 1, 2, 2, 3, 3};  // p, q at t0, then at t1
+  for (int q = 0; q < 3; ++q)
+    for (int k = 0; k < 8; ++k) EXPECT_EQ(file.queries[q].points[k], point_of_row(q, rows[k])) << q << " " << k;
+}
+
+TEST_F(IoTest, PointKindRowCountsAndTruthAreCheckedPerQuery) {
+  // 8 rows are one vf query but one ve query and 2 of the next.
+  const fs::path eight = write("eight.csv", point_rows(1, 8));
+  EXPECT_EQ(read_query_csv(eight, Kind::vertex_face).queries.size(), 1u);
+  EXPECT_EQ(read_query_csv(eight, Kind::vertex_vertex).queries.size(), 2u);
+  EXPECT_TRUE(fails_with([&] { read_query_csv(eight, Kind::vertex_edge); }, eight, 8,
+                         "row count 8 is not a multiple of 6 (ve queries have 6 rows; the last query has 2 of its "
+                         "6 rows)"));
+  const fs::path six = write("six.csv", point_rows(1, 6));
+  EXPECT_TRUE(fails_with([&] { read_query_csv(six, Kind::vertex_vertex); }, six, 6,
+                         "not a multiple of 4 (vv queries have 4 rows; the last query has 2 of its 4 rows)"));
+  EXPECT_TRUE(fails_with([&] { read_query_csv(six, Kind::edge_edge); }, six, 6, "not a multiple of 8"));
+  // The truth must agree on a query's rows: line 5 starts the second vv query, line 4 does not.
+  const std::string rows = point_rows(2, 4);
+  EXPECT_EQ(*read_query_csv(write("two.csv", rows), Kind::vertex_vertex).truth, (std::vector<bool>{false, true}));
+  const std::size_t line_4 = rows.find("3,4,-3,4,1,4,0\n");
+  ASSERT_NE(line_4, std::string::npos);
+  std::string split_text = rows;
+  split_text[line_4 + 13] = '1';
+  const fs::path split = write("split.csv", split_text);
+  EXPECT_TRUE(fails_with([&] { read_query_csv(split, Kind::vertex_vertex); }, split, 4,
+                         "column 7: truth 1 differs from the truth 0 of the earlier rows"));
+  const fs::path bad_value = write("bad.csv", point_rows(1, 5) + "1,3,0,1,0,1,0\n");
+  EXPECT_TRUE(fails_with([&] { read_query_csv(bad_value, Kind::vertex_edge); }, bad_value, 6,
+                         "column 1: '1/3' is not a double"));
 }
 
 TEST_F(IoTest, MissingFilesAreNamed) {
@@ -624,6 +701,21 @@ TEST_F(IoTest, CandidateListsReadWithOptionalSpaces) {
   EXPECT_EQ(read_edge_edge_pairs(write("ee.csv", "0,1,2,3\n2147483647, 4,5 ,6")),
             (std::vector<std::array<int, 4>>{{0, 1, 2, 3}, {2147483647, 4, 5, 6}}));
   EXPECT_TRUE(read_vertex_face_pairs(write("empty.csv", "")).empty());
+  EXPECT_EQ(read_vertex_edge_triples(write("ve.csv", "0,1,2\n 7 , 8,9\r\n")),
+            (std::vector<std::array<int, 3>>{{0, 1, 2}, {7, 8, 9}}));
+  EXPECT_EQ(read_vertex_vertex_pairs(write("vv.csv", "4,5\n5,5\n")),
+            (std::vector<std::array<int, 2>>{{4, 5}, {5, 5}}));
+}
+
+TEST_F(IoTest, MalformedPointCandidateListsNameTheLine) {
+  const fs::path ve = write("ve.csv", "0,1,2\n0,1\n");
+  EXPECT_TRUE(fails_with([&] { read_vertex_edge_triples(ve); }, ve, 2, "expected 3 comma-separated ids, found 2"));
+  write("ve.csv", "0,1,2\n0,1,2\n0,1,-2\n");
+  EXPECT_TRUE(fails_with([&] { read_vertex_edge_triples(ve); }, ve, 3, "column 3: negative id '-2'"));
+  const fs::path vv = write("vv.csv", "0,1\n0,1,2\n");
+  EXPECT_TRUE(fails_with([&] { read_vertex_vertex_pairs(vv); }, vv, 2, "expected 2 comma-separated ids, found 3"));
+  write("vv.csv", "0,1\n\n1,0\n");
+  EXPECT_TRUE(fails_with([&] { read_vertex_vertex_pairs(vv); }, vv, 2, "empty line"));
 }
 
 TEST_F(IoTest, MalformedCandidateListsNameTheLine) {
@@ -697,8 +789,47 @@ TEST_F(IoTest, SceneWithoutCandidateFilesHasEmptyLists) {
   const Scene scene = read_scene(directory_);
   EXPECT_TRUE(scene.candidates.vertex_face.empty());
   EXPECT_TRUE(scene.candidates.edge_edge.empty());
+  EXPECT_TRUE(scene.candidates.vertex_edge.empty());
+  EXPECT_TRUE(scene.candidates.vertex_vertex.empty());
   EXPECT_FALSE(scene.vertex_face_truth.has_value());
   EXPECT_FALSE(scene.edge_edge_truth.has_value());
+  EXPECT_FALSE(scene.vertex_edge_truth.has_value());
+  EXPECT_FALSE(scene.vertex_vertex_truth.has_value());
+}
+
+TEST_F(IoTest, SceneReadsPointEdgeAndPointPointCandidates) {
+  write_scene_meshes(directory_);
+  write("ve.csv", "0,1,2\n3,2,1\n");
+  write("vv.csv", "0,3\n");
+  write("ve_truth.txt", "0\n1\n");
+  write("vv_truth.txt", "[false]");
+  const Scene scene = read_scene(directory_);
+  EXPECT_EQ(scene.candidates.vertex_edge, (std::vector<std::array<int, 3>>{{0, 1, 2}, {3, 2, 1}}));
+  EXPECT_EQ(scene.candidates.vertex_vertex, (std::vector<std::array<int, 2>>{{0, 3}}));
+  EXPECT_EQ(scene.vertex_edge_truth, (std::vector<bool>{false, true}));
+  EXPECT_EQ(scene.vertex_vertex_truth, std::vector<bool>{false});
+  EXPECT_TRUE(scene.candidates.vertex_face.empty());
+  EXPECT_FALSE(scene.edge_edge_truth.has_value());
+}
+
+TEST_F(IoTest, ScenePointCandidatesAreCheckedAgainstTheMesh) {
+  write_scene_meshes(directory_);
+  const fs::path ve = write("ve.csv", "0,1,2\n3,4,1\n");
+  EXPECT_TRUE(
+      fails_with([&] { read_scene(directory_); }, ve, 2, "vertex id 4 is out of range (the mesh has 4 vertices)"));
+  write("ve.csv", "0,1,2\n0,1\n");
+  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, ve, 2, "expected 3 comma-separated ids"));
+  write("ve.csv", "0,1,2\n");
+  const fs::path vv = write("vv.csv", "0,1\n2,3\n9,0\n");
+  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, vv, 3, "vertex id 9 is out of range"));
+  write("vv.csv", "0,1\n");
+  const fs::path ve_truth = write("ve_truth.txt", "1\n0\n");
+  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, ve_truth, 0, "has 2 entries but ve.csv has 1 candidates"));
+  fs::remove(ve_truth);
+  const fs::path vv_truth = write("vv_truth.txt", "1\nyes\n");
+  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, vv_truth, 2, "expected 0 or 1, found 'yes'"));
+  write("vv_truth.txt", "[]");
+  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, vv_truth, 0, "has 0 entries but vv.csv has 1 candidates"));
 }
 
 TEST_F(IoTest, SceneIndicesAreCheckedAgainstTheMesh) {

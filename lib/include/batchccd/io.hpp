@@ -41,8 +41,11 @@ double exact_double_from_rational(std::string_view numerator,
                                   std::string_view denominator);
 
 // The kind a path names, ignoring case: "vertex-face" or a "vf" word means
-// vertex_face, "edge-edge" or an "ee" word edge_edge (the last such component
-// wins). std::nullopt when no component names one. Never throws.
+// vertex_face, "edge-edge" or an "ee" word edge_edge, "vertex-edge",
+// "point-edge" or a "ve" word vertex_edge, "vertex-vertex", "point-point" or
+// a "vv" word vertex_vertex (the last such component wins, and within it the
+// last mention; a pair's words may be joined by '-', '_' or any other single
+// separator). std::nullopt when no component names one. Never throws.
 std::optional<Kind> kind_from_path(const std::filesystem::path& path);
 
 // The queries of one query CSV file, in file order.
@@ -53,14 +56,18 @@ struct QueryFile {
   std::optional<std::vector<bool>> truth;  // one per query, when the file has it
 };
 
-// Query CSV: 8 rows a query; 7 columns x_num,x_den,y_num,y_den,z_num,z_den,truth
-// (truth 0/1, equal on the query's 8 rows) or 6 columns without truth. Commas
-// with or without a space after them. Rows in the point order of Query; the
-// file does not say its kind, so the caller does (kind_from_path helps).
-// Each coordinate must be exactly a double (exact_double_from_rational).
-// Throws InputError on any bad row: a wrong column count, a row count that
-// is not a multiple of 8, a value that is not exactly a double, a truth that
-// is not 0/1 or differs within a query, an empty line.
+// Query CSV: 2 * points_per_time(kind) rows a query, its points at t0 then
+// at t1, each point once: vertex_face and edge_edge 8 rows in the point
+// order of Query; vertex_edge 6 (p, e0, e1 at t0, then at t1); vertex_vertex
+// 4 (p, q at t0, then at t1). Read into Query's layout (make_query). 7
+// columns x_num,x_den,y_num,y_den,z_num,z_den,truth (truth 0/1, equal on the
+// query's rows) or 6 columns without truth. Commas with or without a space
+// after them. The file does not say its kind, so the caller does
+// (kind_from_path helps). Each coordinate must be exactly a double
+// (exact_double_from_rational). Throws InputError on any bad row: a wrong
+// column count, a row count that is not a multiple of the kind's rows, a
+// value that is not exactly a double, a truth that is not 0/1 or differs
+// within a query, an empty line.
 QueryFile read_query_csv(const std::filesystem::path& path, Kind kind);
 
 // Ground truth: a JSON array of booleans (true/false, or 0/1), or one 0/1 a
@@ -82,12 +89,14 @@ struct PlyMesh {
 // range.
 PlyMesh read_ply(const std::filesystem::path& path);
 
-// Candidate lists: "vertex,face" or "a0,a1,b0,b1" a line, no header; ids
-// are 0-based. Throws InputError on a wrong field count, a negative or
-// non-integer id, an id too large for an int, an empty line. Ids are not
-// checked against a mesh here (read_scene does).
+// Candidate lists: "vertex,face", "a0,a1,b0,b1", "vertex,e0,e1" or "p,q" a
+// line, no header; ids are 0-based. Throws InputError on a wrong field
+// count, a negative or non-integer id, an id too large for an int, an empty
+// line. Ids are not checked against a mesh here (read_scene does).
 std::vector<std::array<int, 2>> read_vertex_face_pairs(const std::filesystem::path& path);
 std::vector<std::array<int, 4>> read_edge_edge_pairs(const std::filesystem::path& path);
+std::vector<std::array<int, 3>> read_vertex_edge_triples(const std::filesystem::path& path);
+std::vector<std::array<int, 2>> read_vertex_vertex_pairs(const std::filesystem::path& path);
 
 // A scene directory's contents, ready for mesh_ccd:
 //   mesh_ccd({scene.positions_t0, scene.positions_t1, scene.faces}, scene.candidates)
@@ -99,15 +108,18 @@ struct Scene {
   Candidates candidates;
   std::optional<std::vector<bool>> vertex_face_truth;
   std::optional<std::vector<bool>> edge_edge_truth;
+  std::optional<std::vector<bool>> vertex_edge_truth;
+  std::optional<std::vector<bool>> vertex_vertex_truth;
 };
 
 // A directory holding t0.ply and t1.ply. Never throws (false when the path
 // cannot be examined).
 bool is_scene_directory(const std::filesystem::path& path);
 
-// t0.ply, t1.ply (same vertex count, faces from t0.ply), vf.csv and ee.csv
-// (either may be absent: an empty list), vf_truth.txt and ee_truth.txt
-// (optional; their length must match). Every index is checked against the mesh.
+// t0.ply, t1.ply (same vertex count, faces from t0.ply), vf.csv, ee.csv,
+// ve.csv and vv.csv (any may be absent: an empty list), vf_truth.txt,
+// ee_truth.txt, ve_truth.txt and vv_truth.txt (optional; their length must
+// match). Every index is checked against the mesh.
 // Throws InputError when the directory is not a scene directory, a file is
 // malformed, the vertex counts differ, an id is out of range or a truth
 // file's length does not match its candidate list.

@@ -3,6 +3,7 @@
 #include <cctype>
 #include <stdexcept>
 #include <string>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -47,21 +48,34 @@ bool is_pair(const std::vector<Word>& words, std::size_t i, std::string_view fir
          words[i + 1].begin == words[i].end + 1;
 }
 
+// The words that name each kind: a short name alone, or a pair.
+struct KindWords {
+  Kind kind;
+  std::string_view short_name;
+  std::string_view pairs[2][2];
+};
+constexpr KindWords kind_words[] = {
+    {Kind::vertex_face, "vf", {{"vertex", "face"}, {"vertex", "face"}}},
+    {Kind::edge_edge, "ee", {{"edge", "edge"}, {"edge", "edge"}}},
+    {Kind::vertex_edge, "ve", {{"vertex", "edge"}, {"point", "edge"}}},
+    {Kind::vertex_vertex, "vv", {{"vertex", "vertex"}, {"point", "point"}}},
+};
+
 // The kind a single path component names; its last mention wins.
 std::optional<Kind> kind_named_by_component(std::string_view component) {
   const std::vector<Word> words = alphanumeric_words(component);
   std::optional<Kind> kind;
-  for (std::size_t i = 0; i < words.size(); ++i) {
-    if (words[i].text == "vf" || is_pair(words, i, "vertex", "face")) kind = Kind::vertex_face;
-    if (words[i].text == "ee" || is_pair(words, i, "edge", "edge")) kind = Kind::edge_edge;
-  }
+  for (std::size_t i = 0; i < words.size(); ++i)
+    for (const KindWords& named : kind_words)
+      if (words[i].text == named.short_name || is_pair(words, i, named.pairs[0][0], named.pairs[0][1]) ||
+          is_pair(words, i, named.pairs[1][0], named.pairs[1][1]))
+        kind = named.kind;
   return kind;
 }
 
 // Column layout of a query row (DESIGN.md §5).
 constexpr std::size_t columns_without_truth = 6;
 constexpr std::size_t columns_with_truth = 7;
-constexpr std::size_t rows_per_query = 8;
 
 class QueryCsvParser {
  public:
@@ -71,28 +85,35 @@ class QueryCsvParser {
     QueryFile result;
     result.path = file_;
     result.kind = kind;
+    // A query's points at t0, then at t1, each written once (vf/ee 8 rows, ve 6, vv 4).
+    const std::size_t points_each_time = static_cast<std::size_t>(points_per_time(kind));
+    const std::size_t rows_per_query = 2 * points_each_time;
     const std::vector<NumberedLine> lines = io_detail::numbered_lines(text);
-    check_row_count(lines);
+    check_row_count(lines, kind, rows_per_query);
     if (!lines.empty()) column_count_ = first_row_column_count(lines.front());
     if (column_count_ == columns_with_truth) result.truth.emplace();
     result.queries.reserve(lines.size() / rows_per_query);
+    std::vector<Vec3> points(rows_per_query);
+    const std::span<const Vec3> all(points);
     for (std::size_t first = 0; first < lines.size(); first += rows_per_query) {
-      Query query;
       std::optional<bool> truth;
-      for (std::size_t row = 0; row < rows_per_query; ++row) read_row(lines[first + row], query.points[row], truth);
-      result.queries.push_back(query);
+      for (std::size_t row = 0; row < rows_per_query; ++row) read_row(lines[first + row], points[row], truth);
+      result.queries.push_back(
+          make_query(kind, all.first(points_each_time), all.subspan(points_each_time)));
       if (result.truth) result.truth->push_back(*truth);
     }
     return result;
   }
 
  private:
-  void check_row_count(const std::vector<NumberedLine>& lines) const {
+  void check_row_count(const std::vector<NumberedLine>& lines, Kind kind, std::size_t rows_per_query) const {
     const std::size_t leftover = lines.size() % rows_per_query;
     if (leftover == 0) return;
+    const std::string rows = std::to_string(rows_per_query);
     throw InputError(file_, lines.back().number,
-                     "row count " + std::to_string(lines.size()) + " is not a multiple of 8 (the last query has " +
-                         std::to_string(leftover) + " of its 8 rows)");
+                     "row count " + std::to_string(lines.size()) + " is not a multiple of " + rows + " (" +
+                         to_string(kind) + " queries have " + rows + " rows; the last query has " +
+                         std::to_string(leftover) + " of its " + rows + " rows)");
   }
 
   // The first row fixes the layout of the whole file.
@@ -122,7 +143,7 @@ class QueryCsvParser {
     if (column_count_ == columns_with_truth) read_truth(line, fields.back(), query_truth);
   }
 
-  // The truth is repeated on the 8 rows of a query; they must agree.
+  // The truth is repeated on every row of a query; they must agree.
   void read_truth(const NumberedLine& line, std::string_view field, std::optional<bool>& query_truth) const {
     const std::optional<bool> truth = io_detail::parse_bit(field);
     if (!truth) throw InputError(file_, line.number, "column 7: truth must be 0 or 1, found " + in_quotes(field));

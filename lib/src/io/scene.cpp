@@ -79,12 +79,14 @@ std::vector<std::array<int, 2>> read_checked_vertex_face(const std::filesystem::
   return pairs;
 }
 
-std::vector<std::array<int, 4>> read_checked_edge_edge(const std::filesystem::path& file, const Scene& scene) {
+// Lists of vertex ids alone (ee, ve, vv); empty when the file is absent.
+template <std::size_t N>
+std::vector<std::array<int, N>> read_checked_vertex_ids(const std::filesystem::path& file, const Scene& scene) {
   if (!is_file(file)) return {};
-  std::vector<std::array<int, 4>> pairs = read_edge_edge_pairs(file);
-  for (std::size_t row = 0; row < pairs.size(); ++row)
-    for (const int id : pairs[row]) check_id(file, row, vertex_ids, id, scene.positions_t0.rows());
-  return pairs;
+  std::vector<std::array<int, N>> rows = read_id_rows<N>(file);
+  for (std::size_t row = 0; row < rows.size(); ++row)
+    for (const int id : rows[row]) check_id(file, row, vertex_ids, id, scene.positions_t0.rows());
+  return rows;
 }
 
 // One truth a candidate, when the truth file is there.
@@ -109,6 +111,14 @@ std::vector<std::array<int, 4>> read_edge_edge_pairs(const std::filesystem::path
   return read_id_rows<4>(path);
 }
 
+std::vector<std::array<int, 3>> read_vertex_edge_triples(const std::filesystem::path& path) {
+  return read_id_rows<3>(path);
+}
+
+std::vector<std::array<int, 2>> read_vertex_vertex_pairs(const std::filesystem::path& path) {
+  return read_id_rows<2>(path);
+}
+
 bool is_scene_directory(const std::filesystem::path& path) {
   std::error_code error;
   return std::filesystem::is_directory(path, error) && is_file(path / "t0.ply") && is_file(path / "t1.ply");
@@ -130,10 +140,16 @@ Scene read_scene(const std::filesystem::path& directory) {
   scene.faces = std::move(start.faces);
 
   scene.candidates.vertex_face = read_checked_vertex_face(directory / "vf.csv", scene);
-  scene.candidates.edge_edge = read_checked_edge_edge(directory / "ee.csv", scene);
+  scene.candidates.edge_edge = read_checked_vertex_ids<4>(directory / "ee.csv", scene);
+  scene.candidates.vertex_edge = read_checked_vertex_ids<3>(directory / "ve.csv", scene);
+  scene.candidates.vertex_vertex = read_checked_vertex_ids<2>(directory / "vv.csv", scene);
   scene.vertex_face_truth =
       read_matching_truth(directory / "vf_truth.txt", scene.candidates.vertex_face.size(), "vf.csv");
   scene.edge_edge_truth = read_matching_truth(directory / "ee_truth.txt", scene.candidates.edge_edge.size(), "ee.csv");
+  scene.vertex_edge_truth =
+      read_matching_truth(directory / "ve_truth.txt", scene.candidates.vertex_edge.size(), "ve.csv");
+  scene.vertex_vertex_truth =
+      read_matching_truth(directory / "vv_truth.txt", scene.candidates.vertex_vertex.size(), "vv.csv");
   return scene;
 }
 
