@@ -833,7 +833,7 @@ TEST(CliSharedData, SampleQueriesAndScenesRunWithTruth) {
   EXPECT_EQ(outcome.reports.size(), query_files + 2 * scenes);
   for (const InputReport& report : outcome.reports) {
     ASSERT_TRUE(report.false_negatives.has_value()) << report.input;
-    // Conservative mode never misses a contact (DESIGN.md §3).
+    // Conservative mode never misses a contact (docs/design.md §7).
     EXPECT_EQ(*report.false_negatives, 0) << report.input;
   }
 }

@@ -11,14 +11,14 @@ namespace batchccd {
 // are relative to each query's size.
 using Vec3 = Eigen::Vector3d;
 
-// The two elementary tests of triangle-mesh CCD (DESIGN.md §1).
+// The two elementary tests of triangle-mesh CCD (docs/design.md §1).
 enum class Kind { vertex_face, edge_edge };
 
 // "vf" or "ee", the command-line tool's names. Never null.
 const char* to_string(Kind kind);
 
 // One elementary query: eight points, in the order of the query files
-// (DESIGN.md §5):
+// (docs/design.md §9):
 //   vertex_face: p_t0, a_t0, b_t0, c_t0, p_t1, a_t1, b_t1, c_t1
 //   edge_edge:   ea0_t0, ea1_t0, eb0_t0, eb1_t0, ea0_t1, ea1_t1, eb0_t1, eb1_t1
 // Every vertex moves linearly from its t0 to its t1 position over t in [0, 1].

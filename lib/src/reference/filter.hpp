@@ -5,7 +5,7 @@
 
 namespace batchccd::reference {
 
-// Which lane filters run, and how (DESIGN.md §2).
+// Which lane filters run, and how (docs/design.md §3-4).
 struct FilterSettings {
   bool certified = true;   // cull only when error bounds prove it; else plain signs (fast mode)
   bool sign = true;        // the Bernstein sign test on the coplanarity cubic

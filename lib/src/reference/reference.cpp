@@ -69,7 +69,7 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, bool 
   // Exact mode: every uncertain decision. Conservative mode: those but a
   // contact within tolerance, which its promise allows; the others (out of
   // iterations, or undecidable at the smallest boxes) would be guesses.
-  // Exact arithmetic settles them (DESIGN.md §3).
+  // Exact arithmetic settles them (docs/design.md §7).
   const bool conservative = options.mode == Mode::conservative;
   if (!outcome.certain && (exact || (conservative && !outcome.within_tolerance))) {
     settle_exactly(kind, query, options, evaluation);

@@ -6,7 +6,7 @@
 #include "reference/bernstein.hpp"
 #include "reference/error_bounds.hpp"
 
-// The second lane filter (DESIGN.md §2, "separation against motion"): a
+// The second lane filter (docs/design.md §4, separation against motion): a
 // query cannot touch in [0, 1] when the distance between its primitives at
 // t = 0 exceeds the largest relative displacement of their vertices, because
 // any two points of them (fixed barycentric or edge parameters) move
