@@ -6,7 +6,7 @@
 
 namespace batchccd::scenes {
 
-// Writes a scene directory in the format of DESIGN.md §5, readable by
+// Writes a scene directory in the format of docs/design.md §9, readable by
 // batchccd::read_scene: t0.ply and t1.ply (binary little-endian, x y z as
 // doubles, faces as a uchar count and int vertex ids), vf.csv ("vertex,face"
 // a line) and ee.csv ("a0,a1,b0,b1" a line). Creates the directory and

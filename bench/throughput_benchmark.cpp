@@ -1,4 +1,4 @@
-// Throughput of the lane filter and of whole calls (DESIGN.md §6): the sign
+// Throughput of the lane filter and of whole calls (docs/design.md §10): the sign
 // filter per instruction set against the scalar reference filter, against a
 // plain read of the same bytes, and end to end against the unfiltered cubic
 // solver. Candidates come from the built-in cloth scene's broad phase.

@@ -8,7 +8,7 @@
 #include "simd/sources.hpp"
 
 // The lane filters over a range of candidates, one implementation per
-// instruction set behind one table (DESIGN.md §4: portable front,
+// instruction set behind one table (docs/design.md §8: portable front,
 // per-instruction-set kernels, runtime dispatch).
 namespace batchccd::simd {
 

@@ -86,7 +86,7 @@ ListedGroup<Arch> listed(const ConsecutiveGroup<Arch>& group) {
   return list;
 }
 
-// Loads candidate group[j] of a source into lane j of x[k][tau] (DESIGN.md's
+// Loads candidate group[j] of a source into lane j of x[k][tau] (docs/design.md §1:
 // x_{k+1} at t = tau).
 template <class Arch>
 struct Gather {

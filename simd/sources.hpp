@@ -150,7 +150,7 @@ struct IndexOutOfRange {};
 }
 
 // Where the rows of candidate i's vertices start among MeshPositions::rows,
-// in DESIGN.md's order x1..x4 (VF: a, b, c, p), ids checked unless the
+// in the order x1..x4 of docs/design.md §1 (VF: a, b, c, p), ids checked unless the
 // caller has (check = false). Always inlined, as the lane kernels compiled
 // with other flags call them.
 template <bool check = true>

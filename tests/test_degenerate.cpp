@@ -1,5 +1,5 @@
-// Hand-made degenerate queries with answers worked out exactly (DESIGN.md §3,
-// "Degenerate inputs are part of the job"). Every coordinate is exact in
+// Hand-made degenerate queries with answers worked out exactly (docs/design.md §1,
+// "Degenerate input"). Every coordinate is exact in
 // binary, so each expected answer is the exact-arithmetic answer; the
 // derivation sits next to each case.
 //

@@ -1,4 +1,4 @@
-// Exact mode (DESIGN.md §3): decisions equal to exact arithmetic, a TOI
+// Exact mode (docs/design.md §6-7): decisions equal to exact arithmetic, a TOI
 // within 1e-12 before the first contact, bounded work. The exact stage's
 // algebra on its own; every degenerate class with answers worked out by
 // hand (each coordinate exact in binary, so each answer is the exact one);

@@ -905,7 +905,7 @@ TEST(SharedDataTest, ArmadilloSceneCounts) {
   EXPECT_EQ(std::count(scene.edge_edge_truth->begin(), scene.edge_edge_truth->end(), true), 19308);
 }
 
-// A query assembled from the mesh, in the order of DESIGN.md §5.
+// A query assembled from the mesh, in the order of docs/design.md §9.
 Query assembled_query(const Scene& scene, const std::array<int, 4>& vertex_ids) {
   Query query;
   for (int i = 0; i < 4; ++i) {

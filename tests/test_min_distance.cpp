@@ -1,4 +1,4 @@
-// Minimum separation, tmax and the point kinds (DESIGN.md §8): hand-made
+// Minimum separation, tmax and the point kinds (docs/design.md §11): hand-made
 // cases at and around the separation, an independent exact reference
 // (tests/exact_distance.hpp), properties, batches against single queries,
 // bad options, and the labelled data of ../shared/data/min-distance.

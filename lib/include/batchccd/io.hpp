@@ -13,7 +13,7 @@
 #include "batchccd/batch.hpp"
 #include "batchccd/query.hpp"
 
-// Readers for the data formats of DESIGN.md §5 (query CSV files, PLY
+// Readers for the data formats of docs/design.md §9 (query CSV files, PLY
 // meshes, candidate lists, scene directories). Every reader validates what
 // it reads and throws InputError naming the file, the line (0 when the
 // problem has no line, e.g. a missing file, or a binary PLY body, where the

@@ -4,7 +4,7 @@
 
 namespace batchccd {
 
-// How decisions are made (DESIGN.md §3). A contact is the closed primitives
+// How decisions are made (docs/design.md §7). A contact is the closed primitives
 // coming within Options::min_distance of each other (Euclidean distance;
 // touching when it is 0, the default) at some t in [0, Options::tmax];
 // QueryResult::toi is then the reported time of impact. What each mode
@@ -110,7 +110,7 @@ struct Options {
   // form of the same answers, costing only what there is to list.
   bool hit_list = false;
 
-  // The lane filters (DESIGN.md §2), each certified in conservative and
+  // The lane filters (docs/design.md §3-4), each certified in conservative and
   // exact modes; switch one off to measure the other. Mode cubic runs none.
   // The sign filter runs first, the separation filter on what it keeps.
   bool sign_filter = true;        // Bernstein sign test on the coplanarity cubic

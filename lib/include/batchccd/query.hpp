@@ -12,9 +12,9 @@ namespace batchccd {
 // are relative to each query's size.
 using Vec3 = Eigen::Vector3d;
 
-// The elementary tests: the two of triangle-mesh CCD (DESIGN.md §1), and
+// The elementary tests: the two of triangle-mesh CCD (docs/design.md §1), and
 // point-edge and point-point for rods, particles and codimensional contact
-// (DESIGN.md §8; mostly useful with Options::min_distance > 0).
+// (docs/design.md §11; mostly useful with Options::min_distance > 0).
 enum class Kind { vertex_face, edge_edge, vertex_edge, vertex_vertex };
 
 // "vf", "ee", "ve" or "vv", the command-line tool's names. Never null.
@@ -24,7 +24,7 @@ const char* to_string(Kind kind);
 int points_per_time(Kind kind);
 
 // One elementary query: eight points, t0 positions first, in the order of
-// the query files (DESIGN.md §5):
+// the query files (docs/design.md §9):
 //   vertex_face:   p_t0, a_t0, b_t0, c_t0, p_t1, a_t1, b_t1, c_t1
 //   edge_edge:     ea0_t0, ea1_t0, eb0_t0, eb1_t0, ea0_t1, ea1_t1, eb0_t1, eb1_t1
 // A point-edge or point-point query is the edge-edge query of the point as

@@ -9,8 +9,8 @@ namespace batchccd::exact {
 
 // A query's motion without rounding. Every double is a dyadic rational, so
 // multiplying all 24 coordinates by one power of two makes them integers;
-// scaling and translating change no decision (DESIGN.md §2), so the motion is
-// taken in the frame of x1 (DESIGN.md §1 numbering) and divided by the common
+// scaling and translating change no decision (docs/design.md §1), so the motion is
+// taken in the frame of x1 (docs/design.md §1 numbering) and divided by the common
 // factor of what remains:
 //
 //   relative[i](t) = (x_{i+2}(t) - x_1(t)) / g,  i = 0, 1, 2,

@@ -18,7 +18,7 @@ struct ExactOutcome {
   bool bound_reached = false;
 };
 
-// Decides one query exactly (DESIGN.md §3, mode `exact`): the primitives,
+// Decides one query exactly (docs/design.md §6, mode `exact`): the primitives,
 // closed sets, touch at some t in [0, 1]. Candidate times are 0, 1 and the
 // roots in (0, 1) of the polynomials the contact condition depends on,
 // isolated exactly; the first candidate at which the condition holds is the

@@ -8,7 +8,7 @@ namespace batchccd::exact {
 
 // The TOI of a contact the certified path proved but could not locate to
 // 2^-kToiBits in floating point: there the first contact is the first root
-// of the coplanarity cubic d(t) (DESIGN.md §1) in the dyadic interval
+// of the coplanarity cubic d(t) (docs/design.md §2) in the dyadic interval
 // [low, high] (d certainly changes sign over it, every earlier time is
 // excluded, and the primitives certainly overlap wherever d vanishes in it).
 // Isolates that root exactly and returns a lower bound within

@@ -7,7 +7,7 @@
 
 // An arbitrary-precision integer: a small owning wrapper over GMP's mpz_t
 // (the C library only, so a static libbatchccd needs nothing beyond -lgmp).
-// The exact stage (DESIGN.md §3, mode `exact`) computes on these alone.
+// The exact stage (docs/design.md §6) computes on these alone.
 namespace batchccd::exact {
 
 class Integer {

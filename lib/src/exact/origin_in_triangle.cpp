@@ -66,7 +66,7 @@ std::vector<Polynomial> critical_polynomials(const TriangleConditions& c) {
   if (!c.volume().is_zero()) {
     add(c.volume());  // |m|^2 = 0 implies Q1 . m = 0: every contact is a root
   } else if (!c.normal_squared().is_zero()) {
-    add(c.normal_squared());  // coplanar motion (DESIGN.md §3: a 2-D problem)
+    add(c.normal_squared());  // coplanar motion (docs/design.md §6: a 2-D problem)
     for (const Polynomial& p : c.barycentric()) add(p);
   } else {
     // Collinear throughout: where a side's cross product is not identically

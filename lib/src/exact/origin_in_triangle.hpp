@@ -9,7 +9,7 @@
 #include "exact/exact_motion.hpp"
 
 // The contact condition as signs of polynomials in t, degenerate cases
-// included (DESIGN.md §3, "Degenerate inputs are part of the job").
+// included (docs/design.md §6; §1, "Degenerate input").
 //
 // F(t, u, v), the vector between the two points the parameters name, is
 // affine in (u, v); over the parameter domain it sweeps a triangle (VF: the

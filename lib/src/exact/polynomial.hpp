@@ -6,7 +6,7 @@
 #include "exact/integer.hpp"
 
 // Polynomials in the time t with integer coefficients: the exact stage's
-// coplanarity cubic, normals, barycentric numerators (DESIGN.md §1, §3) and
+// coplanarity cubic, normals, barycentric numerators (docs/design.md §2, §6) and
 // the algebra root isolation needs (gcd, square-free part).
 namespace batchccd::exact {
 

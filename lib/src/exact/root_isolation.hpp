@@ -6,7 +6,7 @@
 
 #include "exact/polynomial.hpp"
 
-// Exact real roots in [0, 1] (DESIGN.md §2-3: Descartes' rule after the
+// Exact real roots in [0, 1] (docs/design.md §2, §6: Descartes' rule after the
 // Möbius map, Bernstein subdivision on dyadic intervals), and the exact sign
 // of another polynomial at such a root. Every loop is bounded by the
 // Davenport-Mahler root separation bound of the polynomials involved, so no

@@ -1,4 +1,4 @@
-// Query CSV files (DESIGN.md §5) and the kind a path names.
+// Query CSV files (docs/design.md §9) and the kind a path names.
 
 #include <cctype>
 #include <stdexcept>
@@ -73,7 +73,7 @@ std::optional<Kind> kind_named_by_component(std::string_view component) {
   return kind;
 }
 
-// Column layout of a query row (DESIGN.md §5).
+// Column layout of a query row (docs/design.md §9).
 constexpr std::size_t columns_without_truth = 6;
 constexpr std::size_t columns_with_truth = 7;
 

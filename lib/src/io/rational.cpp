@@ -1,5 +1,5 @@
 // Decimal rationals of any length to the exact double they denote
-// (DESIGN.md §5: every coordinate of the data is num / 2^k with |num| < 2^53).
+// (docs/design.md §9: every coordinate of the data is num / 2^k with |num| < 2^53).
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-// Candidate lists and scene directories (DESIGN.md §5).
+// Candidate lists and scene directories (docs/design.md §9).
 
 #include <charconv>
 #include <string>

@@ -1,7 +1,7 @@
 #pragma once
 
 // The coplanarity cubic in Bernstein form, computed straight from the
-// geometry (DESIGN.md §2), together with the magnitudes its forward error
+// geometry (docs/design.md §2), together with the magnitudes its forward error
 // bound needs. Written once over the arithmetic type T: double in the scalar
 // reference path, an xsimd batch in the lane kernels, so both make the same
 // decisions bit for bit.

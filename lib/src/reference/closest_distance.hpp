@@ -4,7 +4,7 @@
 // by projection and clamping. Written over the number type T: double where
 // a front needs an initial distance, exact rationals (GMP) in the tests,
 // where a squared distance <= min_distance^2 at a rational time is a witness
-// of a contact (docs/design.md §8).
+// of a contact (docs/design.md §11).
 #include <algorithm>
 #include <array>
 

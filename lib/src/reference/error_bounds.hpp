@@ -1,6 +1,6 @@
 #pragma once
 
-// Forward error bounds of the certified path (DESIGN.md §2): a computed value
+// Forward error bounds of the certified path (docs/design.md §3): a computed value
 // v of an expression whose exact value is x satisfies
 //   |v - x| <= relative * magnitude + floor,
 // where magnitude is the same expression evaluated on absolute values. Each

@@ -69,7 +69,7 @@ static_assert(kSeparationDirectLowest >= kDirectLowest && kSeparationDirectHighe
 namespace {
 
 // run_filters for a call with separations: the same frames, the filters of
-// DESIGN.md §8.
+// docs/design.md §11.
 FilterVerdict run_filters_within(Kind kind, const Query& query, const FilterSettings& settings) {
   FilterVerdict verdict;
   const double separation = settings.min_distance;

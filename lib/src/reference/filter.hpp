@@ -7,13 +7,13 @@
 
 namespace batchccd::reference {
 
-// Which lane filters run, and how (DESIGN.md §2).
+// Which lane filters run, and how (docs/design.md §3-4).
 struct FilterSettings {
   bool certified = true;   // cull only when error bounds prove it; else plain signs (fast mode)
   bool sign = true;        // the Bernstein sign test on the coplanarity cubic
   bool subdivide = true;   // its V = 2 step (false: DNF-style, the four signs only)
   bool separation = true;  // distance at t = 0 against the largest displacement
-  // A call with minimum separations (DESIGN.md §8) filters every candidate
+  // A call with minimum separations (docs/design.md §11) filters every candidate
   // for one, 0 included: the sign filter as the distance to the plane or
   // line pair (no halves), the separation filter with the separation added.
   bool within = false;

@@ -49,7 +49,7 @@ struct SolverOutcome {
 // exactly at a contact. F is linear in u and v and in t, so its range over a
 // box is spanned by the box's 8 corners: a box is excluded when one component
 // is certainly nonzero at every corner, or when the coplanarity cubic is
-// certainly nonzero over the box's times (root isolation, DESIGN.md §3).
+// certainly nonzero over the box's times (root isolation, docs/design.md §5).
 // Boxes are taken earliest time first, so the first box that cannot be
 // excluded and whose image is within `tolerance` of zero gives the TOI.
 // Degenerate triangles, parallel or zero-length edges and coplanar motion

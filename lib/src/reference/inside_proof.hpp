@@ -12,7 +12,7 @@ namespace batchccd::reference {
 // ball that holds every value it takes there (they move linearly).
 using PositionBalls = std::array<Vector3<Ball>, 3>;
 
-// The inside test of DESIGN.md §3, certified over a whole time interval:
+// The inside test of docs/design.md §5, certified over a whole time interval:
 // true when, at every t of it, the primitives' projections along the common
 // normal overlap strictly inside (VF: the vertex inside the triangle, all
 // three edge functions positive; EE: both segment parameters strictly in

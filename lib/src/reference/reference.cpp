@@ -36,7 +36,7 @@ SolverSettings solver_settings(const Options& options) {
 // of x2..x4 below 2 in magnitude, x1 at the origin).
 constexpr double kLargerThanEveryDistance = 8;
 
-// A query with a minimum separation (DESIGN.md §8): no cubic and no exact
+// A query with a minimum separation (docs/design.md §11): no cubic and no exact
 // stage; the search settles it or reports a hit it could not rule out.
 void evaluate_within_distance(const ScaledQuery& scaled, Kind kind, const Options& options,
                               Evaluation& evaluation) {
@@ -107,7 +107,7 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, bool 
   // Exact mode: every uncertain decision. Conservative mode: those but a
   // contact within tolerance, which its promise allows; the others (out of
   // iterations, or undecidable at the smallest boxes) would be guesses.
-  // Exact arithmetic settles them (DESIGN.md §3).
+  // Exact arithmetic settles them (docs/design.md §7).
   const bool conservative = options.mode == Mode::conservative;
   if (!outcome.certain && (exact || (conservative && !outcome.within_tolerance))) {
     settle_exactly(kind, query, options, evaluation);

@@ -23,7 +23,7 @@ struct Evaluation {
   double seconds = 0;           // the evaluation's time, when Options::time_queries
 };
 
-// The whole scalar reference path for one query (DESIGN.md §2-3): scale,
+// The whole scalar reference path for one query (docs/design.md §3-7): scale,
 // filter, solve, and in exact mode settle what stays uncertain exactly. The
 // SIMD path must agree with it decision for decision.
 // filtered: the lane filters already kept this query (a batch survivor), so

@@ -6,9 +6,9 @@
 
 namespace batchccd::reference {
 
-// A query moved into the frame of its first point x1 (DESIGN.md §1 numbering:
+// A query moved into the frame of its first point x1 (docs/design.md §1 numbering:
 // VF x1..x3 the triangle, x4 the vertex; EE x1,x2 edge a, x3,x4 edge b) and
-// scaled by powers of two (DESIGN.md §2, "Floating point"):
+// scaled by powers of two (docs/design.md §3, "The scaled frame"):
 //
 //   relative[i][tau] = (x_{i+2}(tau) - x_1(tau)) * 2^scale,  i = 0, 1, 2
 //
@@ -50,11 +50,11 @@ constexpr Kind evaluated_kind(Kind kind) {
   return kind == Kind::vertex_face ? Kind::vertex_face : Kind::edge_edge;
 }
 
-// Index of DESIGN.md's x_k (k = 1..4) among Query::points at t0 (add 4 for t1).
+// Index of x_k (k = 1..4, docs/design.md §1) among Query::points at t0 (add 4 for t1).
 // Always inlined: the lane kernels, compiled with other instruction sets,
 // call it too, and an out-of-line copy from them must never be shared.
 [[gnu::always_inline]] constexpr int point_index(Kind kind, int k) {
-  // VF files list the vertex first: p, a, b, c; DESIGN.md numbers a, b, c, p.
+  // VF files list the vertex first: p, a, b, c; docs/design.md §1 numbers a, b, c, p.
   return kind == Kind::edge_edge ? k - 1 : (k == 4 ? 0 : k);
 }
 

@@ -6,7 +6,7 @@
 #include "reference/bernstein.hpp"
 #include "reference/error_bounds.hpp"
 
-// The second lane filter (DESIGN.md §2, "separation against motion"): a
+// The second lane filter (docs/design.md §4, separation against motion): a
 // query cannot touch in [0, 1] when the distance between its primitives at
 // t = 0 exceeds the largest relative displacement of their vertices, because
 // any two points of them (fixed barycentric or edge parameters) move
@@ -211,7 +211,7 @@ auto separation_filter_culls(Kind kind, const Vector3<T> (&relative)[3][2], T er
   return sum2 > displacement2;
 }
 
-// The filter with a minimum separation s (DESIGN.md §8), in the same frame
+// The filter with a minimum separation s (docs/design.md §11), in the same frame
 // as `relative`: a contact at t needs d0 <= t m + s and d1 <= (1 - t) m + s,
 // so d0 + d1 > m + 2 s rules it out (d0 > m + s alone does too). The
 // lengths are taken from their certified squares with a margin of 8 u for

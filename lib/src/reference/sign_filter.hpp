@@ -4,7 +4,7 @@
 #include "reference/error_bounds.hpp"
 #include "batchccd/query.hpp"
 
-// The algebraic non-penetration filter (DESIGN.md §2): a certified sign test
+// The algebraic non-penetration filter (docs/design.md §2-3): a certified sign test
 // on the Bernstein coefficients, branch-free so it runs unchanged in SIMD
 // lanes (T = double or an xsimd batch; the result is bool-like per lane).
 namespace batchccd::reference {
@@ -23,7 +23,7 @@ auto certainly_root_free(const T (&coefficient)[4], const T (&magnitude)[4], T r
 }
 
 // The filter's two steps on a query's six differences relative[i][tau]
-// (DESIGN.md's x_{i+2}(tau) - x_1(tau), in whichever frame), given each
+// (x_{i+2}(tau) - x_1(tau), docs/design.md §1, in whichever frame), given each
 // one's largest component magnitude, with the coefficients' absolute error
 // floor of that frame (their relative error is coefficient_error's in
 // both). The lane kernels take the steps apart: the whole interval for
@@ -80,7 +80,7 @@ auto sign_filter_culls(const Vector3<T> (&relative)[3][2], const T (&largest)[3]
   return whole | test.halves();
 }
 
-// The sign test with a minimum separation s (DESIGN.md §8), where the
+// The sign test with a minimum separation s (docs/design.md §11), where the
 // cubic's signs alone prove nothing: primitives can come within s without
 // ever being coplanar. The distance between them is at least the distance
 // |d(t)| / |n(t)| to the triangle's plane (VF, n = x21 x x31) or between the
