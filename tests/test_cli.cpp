@@ -23,6 +23,8 @@
 
 #include <gtest/gtest.h>
 
+#include "program_test.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include "batchccd/batchccd.hpp"
@@ -32,6 +34,9 @@
 namespace {
 
 namespace fs = std::filesystem;
+using program_test::lines_of;
+using program_test::read_file;
+using program_test::write_file;
 using batchccd::Kind;
 using batchccd::cli::InputReport;
 using batchccd::cli::RunOutcome;
@@ -106,23 +111,6 @@ const PointQuery vertex_vertex_hit{{{0, 0, 4}, {0, 0, 0}, {0, 0, -4}, {0, 0, 0}}
 // exactly when the minimum distance is at least 1/4.
 PointQuery vertex_vertex_pass(bool truth) { return {{{-4, 1, 0}, {0, 0, 0}, {4, 1, 0}, {0, 0, 0}}, truth}; }
 
-void write_file(const fs::path& path, const std::string& content) {
-  fs::create_directories(path.parent_path());
-  std::ofstream(path, std::ios::binary) << content;
-}
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
 // A small scene: triangle 0-1-2 with vertex 3 falling through it; edge 4-5
 // sweeping down through edge 0-1; vertices 6, 7 far away and still.
 void write_scene(const fs::path& directory) {
@@ -166,51 +154,13 @@ const std::vector<std::string> json_field_names = {
 
 // ---- running the executable -------------------------------------------------
 
-struct CliRun {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
+using CliRun = program_test::ProgramRun;
 
-std::string shell_quoted(const std::string& text) {
-  std::string quoted = "'";
-  for (char character : text) quoted += character == '\'' ? std::string("'\\''") : std::string(1, character);
-  return quoted + "'";
-}
-
-class CliTest : public ::testing::Test {
+class CliTest : public program_test::ProgramTest {
  protected:
-  void SetUp() override {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    temporary_ = fs::temp_directory_path() /
-                 ("batchccd_cli_" + std::string(test->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(temporary_);
-    fs::create_directories(temporary_);
-  }
-  void TearDown() override { fs::remove_all(temporary_); }
-
-  fs::path path(const std::string& relative) const { return temporary_ / relative; }
-
-  // Runs `batchccd ARGUMENTS` in the temporary directory, with `environment`
-  // ("NAME=value" words) added to its environment.
   CliRun run_cli(const std::vector<std::string>& arguments,
-                 const std::vector<std::string>& environment = {}) const {
-    std::vector<std::string> words = {"cd", shell_quoted(temporary_.string()), "&&", "env"};
-    for (const std::string& setting : environment) words.push_back(shell_quoted(setting));
-    words.push_back(shell_quoted(BATCHCCD_CLI_PATH));
-    for (const std::string& argument : arguments) words.push_back(shell_quoted(argument));
-    words.insert(words.end(), {">", shell_quoted((temporary_ / "stdout.txt").string()), "2>",
-                               shell_quoted((temporary_ / "stderr.txt").string())});
-    std::string command;
-    for (const std::string& word : words) (command += word) += ' ';
-    const int status = std::system(command.c_str());
-    CliRun result;
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    result.out = read_file(temporary_ / "stdout.txt");
-    result.err = read_file(temporary_ / "stderr.txt");
-    fs::remove(temporary_ / "stdout.txt");
-    fs::remove(temporary_ / "stderr.txt");
-    return result;
+             const std::vector<std::string>& environment = {}) const {
+    return run(BATCHCCD_CLI_PATH, arguments, environment);
   }
 
   // The JSON objects printed by `batchccd run --json ARGUMENTS`.
@@ -233,7 +183,6 @@ class CliTest : public ::testing::Test {
     return found;
   }
 
-  fs::path temporary_;
 };
 
 // ---- command line -----------------------------------------------------------

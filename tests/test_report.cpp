@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "program_test.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cstdlib>
@@ -25,6 +27,9 @@
 namespace {
 
 namespace fs = std::filesystem;
+using program_test::lines_of;
+using program_test::read_file;
+using program_test::write_file;
 
 // The vertex falls through the static triangle at t = 1/2 (truth 1), then
 // stays far from it (truth 0); the same for two edges. Coordinates in quarters.
@@ -38,23 +43,6 @@ const std::string edge_edge_hit_and_miss =
     "2,4,-4,4,-4,4,1\n2,4,4,4,-4,4,1\n0,4,0,4,0,4,1\n4,4,0,4,0,4,1\n"
     "2,4,-4,4,40,4,0\n2,4,4,4,40,4,0\n0,4,0,4,0,4,0\n4,4,0,4,0,4,0\n"
     "2,4,-4,4,40,4,0\n2,4,4,4,40,4,0\n0,4,0,4,0,4,0\n4,4,0,4,0,4,0\n";
-
-void write_file(const fs::path& path, const std::string& content) {
-  fs::create_directories(path.parent_path());
-  std::ofstream(path, std::ios::binary) << content;
-}
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
 
 // A small scene: triangle 0-1-2 with vertex 3 falling through it; edge 4-5
 // sweeping down through edge 0-1; vertices 6, 7 far away and still.
@@ -75,54 +63,15 @@ void write_scene(const fs::path& directory) {
   write_file(directory / "ee_truth.txt", "1\n0\n");
 }
 
-struct ReportRun {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
+using ReportRun = program_test::ProgramRun;
 
-std::string shell_quoted(const std::string& text) {
-  std::string quoted = "'";
-  for (char character : text) quoted += character == '\'' ? std::string("'\\''") : std::string(1, character);
-  return quoted + "'";
-}
-
-class ReportTest : public ::testing::Test {
+class ReportTest : public program_test::ProgramTest {
  protected:
-  void SetUp() override {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    temporary_ = fs::temp_directory_path() /
-                 ("batchccd_report_" + std::string(test->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(temporary_);
-    fs::create_directories(temporary_);
-  }
-  void TearDown() override { fs::remove_all(temporary_); }
-
-  fs::path path(const std::string& relative) const { return temporary_ / relative; }
-
-  // Runs `batchccd_report ARGUMENTS` in the temporary directory, with
-  // `environment` ("NAME=value" words) added to its environment.
   ReportRun run_report(const std::vector<std::string>& arguments,
-                 const std::vector<std::string>& environment = {}) const {
-    std::vector<std::string> words = {"cd", shell_quoted(temporary_.string()), "&&", "env"};
-    for (const std::string& setting : environment) words.push_back(shell_quoted(setting));
-    words.push_back(shell_quoted(BATCHCCD_REPORT_PATH));
-    for (const std::string& argument : arguments) words.push_back(shell_quoted(argument));
-    words.insert(words.end(), {">", shell_quoted((temporary_ / "stdout.txt").string()), "2>",
-                               shell_quoted((temporary_ / "stderr.txt").string())});
-    std::string command;
-    for (const std::string& word : words) (command += word) += ' ';
-    const int status = std::system(command.c_str());
-    ReportRun result;
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    result.out = read_file(temporary_ / "stdout.txt");
-    result.err = read_file(temporary_ / "stderr.txt");
-    fs::remove(temporary_ / "stdout.txt");
-    fs::remove(temporary_ / "stderr.txt");
-    return result;
+             const std::vector<std::string>& environment = {}) const {
+    return run(BATCHCCD_REPORT_PATH, arguments, environment);
   }
 
-  fs::path temporary_;
 };
 
 bool is_png(const fs::path& file) { return read_file(file).rfind("\x89PNG\r\n\x1a\n", 0) == 0; }
