@@ -56,8 +56,8 @@ enum class Mode {
   // exclusion of every time in [0, tmax]; a query neither settles within
   // 2^-40 of its size (the primitives' closest approach lies within
   // [min_distance, min_distance + 2^-40 size]) is reported as a hit, never
-  // missed, and counted in Counters::undecided. Contacts up to 2^-45 of the
-  // step after tmax count.
+  // missed, and counted in Counters::undecided. Its TOI is then at most
+  // 2^-40 before the first time they come within that band's upper end.
   exact,
 };
 
@@ -86,8 +86,9 @@ struct Options {
   // (batch.hpp), which replaces this one.
   double min_distance = 0;
   // The end of the time window, in (0, 1]: a contact after tmax is not a
-  // hit (conservative and fast modes may count one less than toi_tolerance
-  // after it, exact mode one less than 2^-45 after it).
+  // hit. Conservative and fast modes may count one less than toi_tolerance
+  // after it; exact mode compares with it exactly (with min_distance > 0,
+  // but for its undecided band).
   double tmax = 1;
 
   // false: only hit/no-hit is needed; the solver stops at the first contact

@@ -187,11 +187,27 @@ class InclusionSolver {
       if (settled || time.middle() - advanced_ <= settings_.toi_tolerance)
         return SolverOutcome{true, std::max(start, advanced_), false, certain};
     }
-    if (search == Search::found && settled)
-      return SolverOutcome{.hit = true, .toi = start, .within_tolerance = true};
+    if (search == Search::found && settled) {
+      // Within the tolerance of a contact: the TOI. The decision is certain
+      // when a contact follows, as it does where the primitives go on closer.
+      const bool proven = settings_.certified && witness_after(start);
+      return SolverOutcome{.hit = true, .toi = start, .certain = proven, .within_tolerance = !proven};
+    }
     if (time.width() <= kSmallestWidth) return SolverOutcome{true, start, false, false};
     split(time);
     return std::nullopt;
+  }
+
+  // Whether a witness stands at one of the times toi_tolerance, twice that,
+  // four times that, ... after `start`, up to tmax.
+  bool witness_after(double start) const {
+    constexpr double grid = 0x1p45;
+    const double end = std::floor(std::min(settings_.tmax, 1.0) * grid) / grid;
+    for (double step = std::max(std::floor(settings_.toi_tolerance * grid), 1.0) / grid;; step *= 2) {
+      const double t = std::min(start + step, end);  // on the grid: exact
+      if (witnessed_at(t)) return true;
+      if (t >= end) return false;
+    }
   }
 
   // Conservative advancement (docs/design.md §11): the distance changes by
