@@ -149,6 +149,16 @@ class InclusionSolver {
         const bool locate = settings_.need_toi || time.high > settings_.tmax;
         if (locate) time = narrow_to_first_root(time, settings_.toi_tolerance);
         if (time.width() <= settings_.toi_tolerance || !locate) return certain_contact(time);
+        // Certified: the signs got too close to call first (a multiple
+        // root, slow relative motion). The first contact is still the
+        // cubic's first root in `time`: returned as such (toi_upper), for
+        // the caller to locate exactly. Searching on would stop at the
+        // first box within tolerance, which for a root of multiplicity k
+        // lies about tolerance^(1/k) before it. Not while the interval is
+        // wide: there it is mostly a root at the halving point (a zero
+        // sign there), which the search locates at once in floating point.
+        if (settings_.certified && settings_.need_toi && time.width() <= kWideInterval)
+          return certain_contact(time);
       }
       if (time.width() <= kSmallestWidth) return {true, time.low, false, false};  // nothing left to refine
       split(time);
