@@ -21,8 +21,10 @@ enum class Mode {
   // a guessed contact, and is counted in Counters::exact_escalations.
   // TOI: never after the first contact (a lower bound). At most
   // toi_tolerance before it when the contact is a clean crossing (a certain
-  // root of the cubic with the primitives certainly overlapping around it),
-  // less than 2^-40 before it when the exact stage found it; earlier when a
+  // root of the cubic with the primitives certainly overlapping around it,
+  // located exactly when its signs are too close to call in double: a
+  // multiple root, slow motion), less than 2^-40 before it when the exact
+  // stage found it; earlier when a
   // near miss within about `tolerance` comes first, which is then where the
   // reported contact is. Queries counted in Counters::undecided report a
   // lower bound only.
@@ -129,7 +131,10 @@ struct Options {
 
   // Conservative/fast solver: a contact is reported when the primitives are
   // within `tolerance` of each other, measured relative to the query's size
-  // (its largest coordinate difference from the first point). Zero,
+  // (its largest coordinate difference from the first point) around that
+  // time -- over the time interval the solver examines, not the whole
+  // step, so a vertex moving far does not widen the tolerance where the
+  // primitives meet (never wider than over the whole step). Zero,
   // negative or NaN: nothing is within tolerance, so near contacts go to
   // the exact stage (conservative) or run out of iterations (fast).
   double tolerance = 1e-9;

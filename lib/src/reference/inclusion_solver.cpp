@@ -122,7 +122,8 @@ class InclusionSolver {
         // Wide intervals get a small parameter budget: their search mostly
         // ends unresolved, and splitting time is cheaper.
         const std::int64_t budget = time.width() > kWideInterval ? kWideBudget : settings_.max_iterations;
-        const Search search = search_parameters(ends, budget);
+        const Search search =
+            search_parameters(ends, budget, settings_.tolerance * std::min(1.0, size_over(ends)));
         if (search == Search::excluded) continue;
         if (search == Search::out_of_iterations) return {true, time.low, true, false};
         if (search == Search::found && settled)
@@ -148,6 +149,16 @@ class InclusionSolver {
         const bool locate = settings_.need_toi || time.high > settings_.tmax;
         if (locate) time = narrow_to_first_root(time, settings_.toi_tolerance);
         if (time.width() <= settings_.toi_tolerance || !locate) return certain_contact(time);
+        // Certified: the signs got too close to call first (a multiple
+        // root, slow relative motion). The first contact is still the
+        // cubic's first root in `time`: returned as such (toi_upper), for
+        // the caller to locate exactly. Searching on would stop at the
+        // first box within tolerance, which for a root of multiplicity k
+        // lies about tolerance^(1/k) before it. Not while the interval is
+        // wide: there it is mostly a root at the halving point (a zero
+        // sign there), which the search locates at once in floating point.
+        if (settings_.certified && settings_.need_toi && time.width() <= kWideInterval)
+          return certain_contact(time);
       }
       if (time.width() <= kSmallestWidth) return {true, time.low, false, false};  // nothing left to refine
       split(time);
@@ -172,7 +183,7 @@ class InclusionSolver {
     if (time.high <= advanced_ || apart_over(ends)) return std::nullopt;
     const bool settled = time.width() <= settings_.toi_tolerance || !settings_.need_toi;
     const std::int64_t budget = time.width() > kWideInterval ? kWideBudget : settings_.max_iterations;
-    const Search search = search_parameters(ends, budget);
+    const Search search = search_parameters(ends, budget, settings_.tolerance);
     if (search == Search::excluded) return std::nullopt;
     // Every time before `start` is free of contact.
     const double start = std::max(time.low, advanced_);
@@ -430,11 +441,29 @@ class InclusionSolver {
     return balls;
   }
 
+  // The query's size over a time interval, in the scaled frame: its largest
+  // coordinate difference from the first point at either end, so at every
+  // time of the interval (the differences move linearly). The frame's own
+  // size (in [1, 2)) counts the whole motion: a corner moving 2^200 makes
+  // it 2^200 times the primitives, and `tolerance` relative to it would
+  // call a unit triangle and a vertex 1e48 away (or everything at t = 0)
+  // within tolerance. The search takes the smaller of it and the frame's
+  // unit, so it never calls more within tolerance than the frame did.
+  static double size_over(const Endpoints& ends) {
+    double size = 0;
+    for (int end = 0; end < 2; ++end)
+      for (const V3& x : ends.position[end])
+        size = std::max({size, std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)});
+    return size;
+  }
+
   // Inner search over (u, v) for one time interval, depth first: excluded
-  // when every box is; found as soon as one box's image is within tolerance;
+  // when every box is; found as soon as one box's image is at most
+  // `found_width` wide (the tolerance, without a separation relative to the
+  // query's size over the interval; see size_over);
   // unresolved when the time interval's own width keeps a box's image wide
   // (the outer search must split time first).
-  Search search_parameters(const Endpoints& ends, std::int64_t budget) {
+  Search search_parameters(const Endpoints& ends, std::int64_t budget, double found_width) {
     std::vector<ParameterBox>& stack = parameter_stack();
     stack.assign(1, ParameterBox{{0, 1}, {0, 1}});
     while (!stack.empty()) {
@@ -451,7 +480,7 @@ class InclusionSolver {
         if (on_primitives && image.centre_distance <= witness_distance_) return Search::witnessed;
         if (on_primitives && image.centre_distance <= settings_.min_distance + settings_.tolerance)
           return Search::found;
-      } else if (image.width <= settings_.tolerance) {
+      } else if (image.width <= found_width) {
         return Search::found;
       }
       const int dimension = dimension_to_split(box, image);

@@ -34,8 +34,8 @@ struct SolverOutcome {
   // not certain: exact mode settles those exactly.
   bool certain = false;
   // A certain hit's first contact is the cubic's first root in [toi,
-  // toi_upper], a dyadic interval; refined_toi_width wide unless the cubic's
-  // signs became too close to call first.
+  // toi_upper], a dyadic interval; refined_toi_width (or toi_tolerance)
+  // wide unless the cubic's signs became too close to call first.
   double toi_upper = 1;
   // A hit because the primitives certainly come within `tolerance` of each
   // other (not proven to touch): the one uncertain hit conservative mode may

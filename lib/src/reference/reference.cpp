@@ -115,10 +115,15 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, bool 
   }
   evaluation.undecided = outcome.undecided;
   if (outcome.hit) evaluation.result = {true, outcome.toi, Status::ok};
-  if (exact && outcome.hit && options.need_toi && outcome.toi_upper - outcome.toi > kExactToiWidth) {
+  // The width a certain contact's TOI is to be located to: 2^-40 in exact
+  // mode, toi_tolerance (at least 2^-45, as the solver takes it) in
+  // conservative mode.
+  const double toi_width = exact ? kExactToiWidth : std::max(options.toi_tolerance, 0x1p-45);
+  if ((exact || conservative) && outcome.certain && outcome.hit && options.need_toi &&
+      outcome.toi_upper - outcome.toi > toi_width) {
     // A certain contact whose cubic's signs got too close to call before
-    // 2^-40 (slow relative motion, or a root exactly at a halving point):
-    // its root located exactly.
+    // that width (slow relative motion, a multiple root, or a root exactly
+    // at a halving point): its root located exactly.
     evaluation.exact_stage = ExactStage::toi;
     if (const auto toi = exact::first_root_lower_bound(kind, query, outcome.toi, outcome.toi_upper)) {
       evaluation.result.toi = *toi;
