@@ -83,7 +83,7 @@ std::string plot_script(std::string_view title, const fs::path& csv, const fs::p
     << "set key outside right top vertical Left reverse noautotitle\n"
     << "set xlabel 'run time [s]'\n"
     << "set offsets graph 0.1, graph 0.1, graph 0.1, graph 0.05\n"
-    << "set multiplot layout 1,2 title " << gnuplot_string(title) << "\n"
+    << "set multiplot layout 1,2 title " << gnuplot_string(title) << " noenhanced\n"
     << "set title 'wrong decisions (false negatives + false positives)'\n"
     << "set ylabel 'wrong decisions'\n"
     << "set ytics 1, 10\n"
