@@ -37,6 +37,25 @@ inline std::vector<std::string> lines_of(const std::string& text) {
   return lines;
 }
 
+// A small scene: triangle 0-1-2 with vertex 3 falling through it; edge 4-5
+// sweeping down through edge 0-1; vertices 6, 7 far away and still.
+inline void write_small_scene(const fs::path& directory) {
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 8\nproperty double x\nproperty double y\n"
+      "property double z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string fixed_vertices = "0 0 0\n1 0 0\n0 1 0\n";
+  const std::string far_vertices = "10 10 10\n11 10 10\n";
+  write_file(directory / "t0.ply", header + fixed_vertices + "0.25 0.25 1\n0.5 -1 1\n0.5 1 1\n" +
+                                       far_vertices + "3 0 1 2\n");
+  write_file(directory / "t1.ply", header + fixed_vertices +
+                                       "0.25 0.25 -1\n0.5 -1 -1\n0.5 1 -1\n" + far_vertices +
+                                       "3 0 1 2\n");
+  write_file(directory / "vf.csv", "3,0\n6,0\n");
+  write_file(directory / "vf_truth.txt", "1\n0\n");
+  write_file(directory / "ee.csv", "4,5,0,1\n4,5,6,7\n");
+  write_file(directory / "ee_truth.txt", "1\n0\n");
+}
+
 inline std::string shell_quoted(const std::string& text) {
   std::string quoted = "'";
   for (char character : text) quoted += character == '\'' ? std::string("'\\''") : std::string(1, character);

@@ -111,23 +111,9 @@ const PointQuery vertex_vertex_hit{{{0, 0, 4}, {0, 0, 0}, {0, 0, -4}, {0, 0, 0}}
 // exactly when the minimum distance is at least 1/4.
 PointQuery vertex_vertex_pass(bool truth) { return {{{-4, 1, 0}, {0, 0, 0}, {4, 1, 0}, {0, 0, 0}}, truth}; }
 
-// A small scene: triangle 0-1-2 with vertex 3 falling through it; edge 4-5
-// sweeping down through edge 0-1; vertices 6, 7 far away and still.
+// The small scene of program_test.hpp, with a query file of its own.
 void write_scene(const fs::path& directory) {
-  const std::string header =
-      "ply\nformat ascii 1.0\nelement vertex 8\nproperty double x\nproperty double y\n"
-      "property double z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
-  const std::string fixed_vertices = "0 0 0\n1 0 0\n0 1 0\n";
-  const std::string far_vertices = "10 10 10\n11 10 10\n";
-  write_file(directory / "t0.ply", header + fixed_vertices + "0.25 0.25 1\n0.5 -1 1\n0.5 1 1\n" +
-                                       far_vertices + "3 0 1 2\n");
-  write_file(directory / "t1.ply", header + fixed_vertices +
-                                       "0.25 0.25 -1\n0.5 -1 -1\n0.5 1 -1\n" + far_vertices +
-                                       "3 0 1 2\n");
-  write_file(directory / "vf.csv", "3,0\n6,0\n");
-  write_file(directory / "vf_truth.txt", "1\n0\n");
-  write_file(directory / "ee.csv", "4,5,0,1\n4,5,6,7\n");
-  write_file(directory / "ee_truth.txt", "1\n0\n");
+  program_test::write_small_scene(directory);
   // A scene's own query file belongs to the scene, not to a directory search.
   write_file(directory / "queries_vf.csv", vertex_face_hit_and_miss);
 }
