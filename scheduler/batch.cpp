@@ -1,7 +1,6 @@
 #include "batchccd/batch.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <numeric>
 #include <stdexcept>
 #include <vector>
@@ -17,6 +16,7 @@
 #include "mesh_validation.hpp"
 #include "reference/reference.hpp"
 #include "reference/scaled_query.hpp"
+#include "separation_check.hpp"
 #include "simd/filter.hpp"
 #include "simd/sources.hpp"
 
@@ -198,10 +198,9 @@ Separations separations_of(std::span<const double> each, std::size_t count, cons
                                 std::to_string(each.size()) + " values for " + std::to_string(count) +
                                 " candidates");
   for (std::size_t i = 0; i < each.size(); ++i)
-    if (!(each[i] >= 0 && std::isfinite(each[i])) || (options.mode == Mode::cubic && each[i] > 0))
+    if (const char* expected = separation_problem(each[i], options.mode))
       throw std::invalid_argument(std::string("batchccd: ") + list + " candidate " + std::to_string(i) +
-                                  ": min_distance must be >= 0 and finite (0 in mode cubic), got " +
-                                  std::to_string(each[i]));
+                                  ": min_distance must be " + expected + ", got " + std::to_string(each[i]));
   return {0, each.data()};
 }
 

@@ -1,9 +1,10 @@
 #include "batchccd/options.hpp"
 
-#include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+
+#include "separation_check.hpp"
 
 namespace batchccd {
 namespace {
@@ -18,11 +19,9 @@ namespace {
 }  // namespace
 
 void validate(const Options& options) {
-  if (!(options.min_distance >= 0 && std::isfinite(options.min_distance)))  // NaN fails too
-    refuse("min_distance", options.min_distance, ">= 0 and finite");
+  if (const char* expected = separation_problem(options.min_distance, options.mode))
+    refuse("min_distance", options.min_distance, expected);
   if (!(options.tmax > 0 && options.tmax <= 1)) refuse("tmax", options.tmax, "in (0, 1]");
-  if (options.mode == Mode::cubic && options.min_distance > 0)
-    refuse("min_distance", options.min_distance, "0 in mode cubic (the cubic finds roots, not distances)");
 }
 
 }  // namespace batchccd
