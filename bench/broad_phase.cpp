@@ -54,10 +54,14 @@ void check_input(const MeshView& mesh, double margin) {
       mesh.positions_t1.rows() != n || (mesh.faces.rows() > 0 && mesh.faces.cols() != 3))
     throw std::invalid_argument("broad phase: positions must be n x 3 at t0 and t1, faces m x 3");
   // NaN would break the sort's ordering.
-  if (!mesh.positions_t0.allFinite() || !mesh.positions_t1.allFinite())
-    throw std::invalid_argument("broad phase: a vertex coordinate is not finite");
-  if (mesh.faces.size() > 0 && (mesh.faces.minCoeff() < 0 || mesh.faces.maxCoeff() >= n))
-    throw std::invalid_argument("broad phase: a face index is out of range");
+  for (std::int64_t v = 0; v < n; ++v)
+    for (int c = 0; c < 3; ++c)
+      if (!std::isfinite(mesh.positions_t0(v, c)) || !std::isfinite(mesh.positions_t1(v, c)))
+        throw std::invalid_argument("broad phase: a vertex coordinate is not finite");
+  for (std::int64_t f = 0; f < mesh.faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c)
+      if (mesh.faces(f, c) < 0 || mesh.faces(f, c) >= n)
+        throw std::invalid_argument("broad phase: a face index is out of range");
 }
 
 template <std::size_t N>
@@ -68,7 +72,7 @@ Box swept_box(const MeshView& mesh, const std::array<int, N>& vertices, int id, 
   for (int axis = 0; axis < 3; ++axis) {
     double lo = mesh.positions_t0(vertices[0], axis), hi = lo;
     for (std::size_t k = 0; k < N; ++k) {
-      for (const Eigen::MatrixXd* positions : {&mesh.positions_t0, &mesh.positions_t1}) {
+      for (const PositionsView* positions : {&mesh.positions_t0, &mesh.positions_t1}) {
         const double x = (*positions)(vertices[k], axis);
         lo = std::min(lo, x);
         hi = std::max(hi, x);
@@ -86,10 +90,16 @@ Box swept_box(const MeshView& mesh, const std::array<int, N>& vertices, int id, 
 // false overlaps.
 std::array<int, 3> axes_by_spread(const MeshView& mesh) {
   Eigen::Vector3d variance = Eigen::Vector3d::Zero();
-  for (const Eigen::MatrixXd* positions : {&mesh.positions_t0, &mesh.positions_t1}) {
-    if (positions->rows() == 0) continue;
-    const Eigen::RowVector3d mean = positions->colwise().mean();
-    variance += (positions->rowwise() - mean).colwise().squaredNorm().transpose();
+  for (const PositionsView* positions : {&mesh.positions_t0, &mesh.positions_t1}) {
+    const std::int64_t n = positions->rows();
+    if (n == 0) continue;
+    const auto at = [&](std::int64_t v) {
+      return Eigen::Vector3d((*positions)(v, 0), (*positions)(v, 1), (*positions)(v, 2));
+    };
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (std::int64_t v = 0; v < n; ++v) mean += at(v);
+    mean /= static_cast<double>(n);
+    for (std::int64_t v = 0; v < n; ++v) variance += (at(v) - mean).cwiseAbs2();
   }
   std::array<int, 3> axes{0, 1, 2};
   std::stable_sort(axes.begin(), axes.end(), [&](int a, int b) { return variance[a] > variance[b]; });
@@ -223,7 +233,7 @@ void sweep(const std::vector<Box>& drivers, const std::vector<Box>& others, int 
 }
 
 // The mesh's unique edges (batchccd::unique_edges) as the sweeps use them.
-std::vector<std::array<int, 2>> edges_of(const Eigen::MatrixXi& faces) {
+std::vector<std::array<int, 2>> edges_of(const IdsView& faces) {
   const Eigen::MatrixXi matrix = unique_edges(faces);
   std::vector<std::array<int, 2>> edges(static_cast<std::size_t>(matrix.rows()));
   for (Eigen::Index e = 0; e < matrix.rows(); ++e)
@@ -238,7 +248,8 @@ double mean_edge_length(const MeshView& mesh) {
   if (edges.empty()) return 0;
   double sum = 0;
   for (const auto& [a, b] : edges)
-    sum += (mesh.positions_t0.row(a) - mesh.positions_t0.row(b)).norm();
+    sum += std::hypot(mesh.positions_t0(a, 0) - mesh.positions_t0(b, 0), mesh.positions_t0(a, 1) - mesh.positions_t0(b, 1),
+                      mesh.positions_t0(a, 2) - mesh.positions_t0(b, 2));
   return sum / static_cast<double>(edges.size());
 }
 
@@ -255,7 +266,7 @@ Candidates swept_box_candidates(const MeshView& mesh, double margin) {
     vertices[v] = swept_box(mesh, std::array<int, 1>{static_cast<int>(v)}, static_cast<int>(v), margin);
   });
   tbb::parallel_for(std::size_t{0}, face_count, [&](std::size_t f) {
-    const auto i = static_cast<Eigen::Index>(f);
+    const auto i = static_cast<std::int64_t>(f);
     faces[f] = swept_box(mesh, std::array<int, 3>{mesh.faces(i, 0), mesh.faces(i, 1), mesh.faces(i, 2)},
                          static_cast<int>(f), margin);
   });

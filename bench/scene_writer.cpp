@@ -66,18 +66,18 @@ class BufferedFile {
   std::string buffer_;
 };
 
-void write_ply(const fs::path& path, const Eigen::MatrixXd& positions, const Eigen::MatrixXi& faces) {
+void write_ply(const fs::path& path, const PositionsView& positions, const IdsView& faces) {
   BufferedFile file(path);
   file.text("ply\nformat binary_little_endian 1.0\ncomment written by batchccd_scenes\n");
   file.text("element vertex " + std::to_string(positions.rows()) + "\n");
   file.text("property double x\nproperty double y\nproperty double z\n");
   file.text("element face " + std::to_string(faces.rows()) + "\n");
   file.text("property list uchar int vertex_indices\nend_header\n");
-  for (Eigen::Index v = 0; v < positions.rows(); ++v) {
+  for (std::int64_t v = 0; v < positions.rows(); ++v) {
     for (int axis = 0; axis < 3; ++axis) file.float64(positions(v, axis));
     file.maybe_flush();
   }
-  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+  for (std::int64_t f = 0; f < faces.rows(); ++f) {
     file.little_endian(std::uint8_t{3});
     for (int k = 0; k < 3; ++k) file.int32(faces(f, k));
     file.maybe_flush();

@@ -128,10 +128,9 @@ void filter_mesh(benchmark::State& state, Isa isa, Kind kind) {
   if (!kernels) return;
   const ClothCandidates& data = cloth();
   const MeshView view = data.mesh.view();
-  const simd::PackedPositions packed(view.positions_t0.data(), view.positions_t1.data(),
-                                    view.positions_t0.rows());
+  const simd::PackedPositions packed(view.positions_t0, view.positions_t1);
   const simd::MeshPositions positions = packed.view();
-  const simd::PackedFaces faces(view.faces.data(), view.faces.rows());
+  const simd::PackedFaces faces(view.faces, view.faces.rows());
   const std::size_t count = kind == Kind::vertex_face ? data.candidates.vertex_face.size()
                                                       : data.candidates.edge_edge.size();
   std::vector<std::uint32_t> survivors(count);

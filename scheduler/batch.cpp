@@ -236,7 +236,7 @@ BatchResult batch_ccd(Kind kind, std::span<const Query> queries, const Options& 
 
 // Point-edge and point-point candidates as the edge-edge candidates they
 // are (Query's layout): the point a zero-length edge.
-std::vector<std::array<int, 4>> as_edge_edge(const Candidates& candidates, const Options& options) {
+std::vector<std::array<int, 4>> as_edge_edge(const CandidateLists& candidates, const Options& options) {
   std::vector<std::array<int, 4>> pairs;
   if (options.vertex_edge)
     for (const auto& [vertex, e0, e1] : candidates.vertex_edge) pairs.push_back({vertex, vertex, e0, e1});
@@ -245,7 +245,7 @@ std::vector<std::array<int, 4>> as_edge_edge(const Candidates& candidates, const
   return pairs;
 }
 
-void mesh_ccd(const MeshView& mesh, const Candidates& candidates, const MinDistances& min_distances,
+void mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const MinDistances& min_distances,
               const Options& options, BatchResult& out) {
   validate(options);
   const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
@@ -272,11 +272,10 @@ void mesh_ccd(const MeshView& mesh, const Candidates& candidates, const MinDista
     simd::PackedPositions packed(mesh.positions_t0.rows());
     tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, mesh.positions_t0.rows(), 1 << 14),
                       [&](const tbb::blocked_range<std::int64_t>& rows) {
-                        packed.pack(mesh.positions_t0.data(), mesh.positions_t1.data(), rows.begin(),
-                                    rows.end());
+                        packed.pack(mesh.positions_t0, mesh.positions_t1, rows.begin(), rows.end());
                       });
     // Faces only where the vertex-face list is read.
-    const simd::PackedFaces faces(mesh.faces.data(), vertex_face > 0 ? mesh.faces.rows() : 0);
+    const simd::PackedFaces faces(mesh.faces, vertex_face > 0 ? mesh.faces.rows() : 0);
     const std::vector<std::array<int, 4>> point_pairs = as_edge_edge(candidates, options);
     const simd::MeshVertexFace vertex_face_source{packed.view(), faces.view(), candidates.vertex_face.data()};
     const simd::MeshEdgeEdge edge_edge_source{packed.view(), candidates.edge_edge.data()};
@@ -314,12 +313,12 @@ void mesh_ccd(const MeshView& mesh, const Candidates& candidates, const MinDista
   sort_hits(out);
 }
 
-void mesh_ccd(const MeshView& mesh, const Candidates& candidates, const Options& options,
+void mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const Options& options,
               BatchResult& out) {
   mesh_ccd(mesh, candidates, MinDistances{}, options, out);
 }
 
-BatchResult mesh_ccd(const MeshView& mesh, const Candidates& candidates, const Options& options) {
+BatchResult mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const Options& options) {
   BatchResult batch;
   mesh_ccd(mesh, candidates, options, batch);
   return batch;

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
-#include <vector>
+#include <span>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -18,23 +18,23 @@ namespace {
 
 // A matrix with no rows holds nothing to index: any column count is accepted,
 // so that default-constructed (0 x 0) matrices describe an empty mesh.
-template <class Matrix>
-void check_three_columns(const Matrix& matrix, const char* name) {
+template <class View>
+void check_three_columns(const View& matrix, const char* name) {
   if (matrix.rows() > 0 && matrix.cols() != 3)
     refuse(std::string(name) + " must have 3 columns, it has " + std::to_string(matrix.cols()));
 }
 
-std::string range_text(Eigen::Index count) { return " out of range [0, " + std::to_string(count) + ")"; }
+std::string range_text(std::int64_t count) { return " out of range [0, " + std::to_string(count) + ")"; }
 
 // id outside [0, count), negative ids included, in one comparison.
-bool outside(int id, Eigen::Index count) {
+bool outside(int id, std::int64_t count) {
   return static_cast<std::uint64_t>(static_cast<std::int64_t>(id)) >= static_cast<std::uint64_t>(count);
 }
 
 // Whether some item of `items` has an index out of range, in parallel
 // pieces (the lists are as long as the work), each one branch-free pass.
 template <class Item, class Outside>
-bool any_outside(const std::vector<Item>& items, Outside item_outside) {
+bool any_outside(std::span<const Item> items, Outside item_outside) {
   return tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, items.size(), 1 << 16), false,
       [&](const tbb::blocked_range<std::size_t>& range, bool found) {
@@ -46,10 +46,11 @@ bool any_outside(const std::vector<Item>& items, Outside item_outside) {
 
 // Every index at once, so that a valid call (the common case) pays for no
 // per-index message machinery.
-bool all_in_range(const MeshView& mesh, const Candidates& candidates, CandidateLists lists) {
-  const Eigen::Index n = mesh.positions_t0.rows(), m = mesh.faces.rows();
+bool all_in_range(const MeshView& mesh, const CandidateLists& candidates, ListsToCheck lists) {
+  const std::int64_t n = mesh.positions_t0.rows(), m = mesh.faces.rows();
   bool found = false;
-  for (Eigen::Index i = 0; i < mesh.faces.size(); ++i) found |= outside(mesh.faces.data()[i], n);
+  for (std::int64_t f = 0; f < m; ++f)
+    for (int k = 0; k < 3; ++k) found |= outside(mesh.faces(f, k), n);
   if (lists.vertex_face)
     found |= any_outside(candidates.vertex_face, [n, m](const std::array<int, 2>& pair) {
       return outside(pair[0], n) | outside(pair[1], m);
@@ -67,9 +68,9 @@ bool all_in_range(const MeshView& mesh, const Candidates& candidates, CandidateL
 
 }  // namespace
 
-void check_mesh(const MeshView& mesh, const Candidates& candidates, CandidateLists lists) {
-  const Eigen::Index n = mesh.positions_t0.rows();
-  const Eigen::Index m = mesh.faces.rows();
+void check_mesh(const MeshView& mesh, const CandidateLists& candidates, ListsToCheck lists) {
+  const std::int64_t n = mesh.positions_t0.rows();
+  const std::int64_t m = mesh.faces.rows();
   check_three_columns(mesh.positions_t0, "positions_t0");
   check_three_columns(mesh.positions_t1, "positions_t1");
   check_three_columns(mesh.faces, "faces");
@@ -78,7 +79,7 @@ void check_mesh(const MeshView& mesh, const Candidates& candidates, CandidateLis
            std::to_string(mesh.positions_t1.rows()));
   if (all_in_range(mesh, candidates, lists)) return;
   // Something is out of range: find the first offender and name it.
-  for (Eigen::Index f = 0; f < m; ++f)
+  for (std::int64_t f = 0; f < m; ++f)
     for (int k = 0; k < 3; ++k) {
       const int id = mesh.faces(f, k);
       if (id < 0 || id >= n) refuse("face " + std::to_string(f) + ": vertex " + std::to_string(id) + range_text(n));

@@ -6,18 +6,18 @@ namespace batchccd {
 
 // Which candidate lists check_mesh reads (the lane filters check the ids
 // of those they read themselves).
-struct CandidateLists {
+struct ListsToCheck {
   bool vertex_face = true;
   bool edge_edge = true;
   bool vertex_edge = true;
   bool vertex_vertex = true;
 };
 
-// Throws std::invalid_argument naming the first bad item: matrices that are
+// Throws std::invalid_argument naming the first bad item: views that are
 // not n x 3 / m x 3 (zero rows: any column count) with positions_t0 and
 // positions_t1 of equal row counts, or an index out of range in a face or in
 // one of `lists` (once something is wrong, the first bad item of all, in the
 // order faces, vertex-face, edge-edge, vertex-edge, vertex-vertex). Runs in the caller's task arena.
-void check_mesh(const MeshView& mesh, const Candidates& candidates, CandidateLists lists = {});
+void check_mesh(const MeshView& mesh, const CandidateLists& candidates, ListsToCheck lists = {});
 
 }  // namespace batchccd

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "batchccd/query.hpp"
+#include "batchccd/views.hpp"
 #include "reference/scaled_query.hpp"
 
 // Where a batch's candidates come from: raw queries, or a mesh and its
@@ -57,9 +58,9 @@ struct MeshPositions {
 // the lane kernels, compiled with other flags, call it.
 [[gnu::always_inline]] inline std::int64_t row_start(std::int64_t vertex) { return kRowDoubles * vertex; }
 
-// Owns the packed rows of a mesh, made from Eigen's column-major n x 3
-// matrices (x, y, z columns of n each), once per call: O(vertices), where
-// the work is O(candidates).
+// Owns the packed rows of a mesh, made from the caller's positions (any
+// layout, double or float) once per call: O(vertices), where the work is
+// O(candidates).
 class PackedPositions {
  public:
   // Room for `vertices` rows; pack() fills them.
@@ -70,20 +71,24 @@ class PackedPositions {
                   std::align_val_t(64))),
               Free{}) {}
   // All rows at once.
-  PackedPositions(const double* t0, const double* t1, std::int64_t vertices) : PackedPositions(vertices) {
-    pack(t0, t1, 0, vertices);
+  PackedPositions(const PositionsView& t0, const PositionsView& t1) : PackedPositions(t0.rows()) {
+    pack(t0, t1, 0, t0.rows());
   }
 
   // Rows [begin, end): callers may fill disjoint ranges in parallel.
-  void pack(const double* t0, const double* t1, std::int64_t begin, std::int64_t end) {
-    for (std::int64_t v = begin; v < end; ++v) {
-      double* row = rows_.get() + row_start(v);
-      for (int c = 0; c < 3; ++c) {
-        row[c] = t0[v + c * vertices_];
-        row[c + 3] = t1[v + c * vertices_];
-      }
-      row[6] = row[7] = 0;
-    }
+  void pack(const PositionsView& t0, const PositionsView& t1, std::int64_t begin, std::int64_t end) {
+    t0.visit([&](const auto& start) {
+      t1.visit([&](const auto& stop) {
+        for (std::int64_t v = begin; v < end; ++v) {
+          double* row = rows_.get() + row_start(v);
+          for (int c = 0; c < 3; ++c) {
+            row[c] = start(v, c);
+            row[c + 3] = stop(v, c);
+          }
+          row[6] = row[7] = 0;
+        }
+      });
+    });
   }
 
   MeshPositions view() const { return {rows_.get(), vertices_}; }
@@ -103,16 +108,16 @@ struct MeshFaces {
   std::int64_t count;
 };
 
-// Owns the rows of MeshFaces, made from Eigen's column-major m x 3 matrix
-// once per call: a lane reads its face's corners from one place instead of
-// three columns apart, and finds their rows without a multiplication
-// (vertex-face lanes 1.01x to 1.02x, ./dev ab, 9 rounds).
+// Owns the rows of MeshFaces, made from the caller's m x 3 faces once per
+// call: a lane reads its face's corners from one place, and finds their rows
+// without a multiplication (vertex-face lanes 1.01x to 1.02x).
 class PackedFaces {
  public:
-  PackedFaces(const int* columns, std::int64_t faces) : rows_(static_cast<std::size_t>(faces)) {
-    for (std::int64_t f = 0; f < faces; ++f)
-      rows_[static_cast<std::size_t>(f)] = {row_start(columns[f]), row_start(columns[f + faces]),
-                                            row_start(columns[f + 2 * faces]), 0};
+  // The first `count` faces.
+  PackedFaces(const IdsView& faces, std::int64_t count) : rows_(static_cast<std::size_t>(count)) {
+    for (std::int64_t f = 0; f < count; ++f)
+      rows_[static_cast<std::size_t>(f)] = {row_start(faces(f, 0)), row_start(faces(f, 1)),
+                                            row_start(faces(f, 2)), 0};
   }
   MeshFaces view() const {
     return {rows_.empty() ? nullptr : rows_.front().data(), static_cast<std::int64_t>(rows_.size())};

@@ -239,11 +239,13 @@ TEST(BadInputEmpty, EmptyQueryListGivesEmptyResult) {
 TEST(BadInputEmpty, EmptyMeshWithoutCandidatesGivesEmptyResult) {
   const Eigen::MatrixXd none_3(0, 3);
   const Eigen::MatrixXi no_faces_3(0, 3);
-  expect_empty(batchccd::mesh_ccd({none_3, none_3, no_faces_3}, {}));
-  // Default-constructed (0 x 0) matrices describe the same empty mesh.
+  expect_empty(batchccd::mesh_ccd({none_3, none_3, no_faces_3}, batchccd::CandidateLists{}));
+  // Default-constructed (0 x 0) matrices and views describe the same empty mesh.
   const Eigen::MatrixXd none;
   const Eigen::MatrixXi no_faces;
-  expect_empty(batchccd::mesh_ccd({none, none, no_faces}, {}));
+  expect_empty(batchccd::mesh_ccd({none, none, no_faces}, batchccd::CandidateLists{}));
+  expect_empty(batchccd::mesh_ccd(batchccd::MeshView{}, batchccd::CandidateLists{}));
+  expect_empty(batchccd::mesh_ccd(batchccd::MeshView{}, batchccd::EdgeIdCandidates{}));
 }
 
 // ---------------------------------------------------------------------------

@@ -33,8 +33,12 @@ TEST(UniqueEdges, EachUndirectedEdgeOnceSorted) {
   Eigen::MatrixXi expected(6, 2);
   expected << 0, 1, 0, 2, 0, 3, 1, 2, 1, 4, 2, 3;
   EXPECT_EQ(unique_edges(faces), expected);
-  EXPECT_EQ(unique_edges(Eigen::MatrixXi(0, 3)).rows(), 0);
-  EXPECT_EQ(unique_edges(Eigen::MatrixXi()).rows(), 0);
+  const Eigen::MatrixXi no_rows(0, 3), empty;
+  EXPECT_EQ(unique_edges(no_rows).rows(), 0);
+  EXPECT_EQ(unique_edges(empty).rows(), 0);
+  // Any layout: the same faces row-major.
+  const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> row_major = faces;
+  EXPECT_EQ(unique_edges(row_major), expected);
 }
 
 TEST(UniqueEdges, FeedsTheEdgeIdCall) {
@@ -51,7 +55,8 @@ TEST(UniqueEdges, FeedsTheEdgeIdCall) {
 }
 
 TEST(UniqueEdges, RefusesMalformedFaces) {
-  EXPECT_THROW(unique_edges(Eigen::MatrixXi::Zero(2, 4)), std::invalid_argument);
+  const Eigen::MatrixXi four_columns = Eigen::MatrixXi::Zero(2, 4);
+  EXPECT_THROW(unique_edges(four_columns), std::invalid_argument);
   Eigen::MatrixXi negative(1, 3);
   negative << 0, -1, 2;
   EXPECT_THROW(unique_edges(negative), std::invalid_argument);

@@ -183,7 +183,7 @@ TEST(BadOptions, AreRefusedByEveryCall) {
     EXPECT_THROW(batch_ccd(Kind::vertex_face, std::vector<Query>{q}, bad), std::invalid_argument);
     const Eigen::MatrixXd positions = Eigen::MatrixXd::Zero(3, 3);
     const Eigen::MatrixXi faces = Eigen::MatrixXi::Zero(0, 3);
-    EXPECT_THROW(mesh_ccd({positions, positions, faces}, Candidates{}, bad), std::invalid_argument);
+    EXPECT_THROW(mesh_ccd({positions, positions, faces}, CandidateLists{}, bad), std::invalid_argument);
   }
   try {
     query_ccd(Kind::vertex_face, q, with(Mode::conservative, -0.5));

@@ -35,7 +35,7 @@ Candidates brute_force_candidates(const MeshView& mesh, double margin) {
   auto box = [&](std::initializer_list<int> vertices) {
     std::array<double, 6> b{INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
     for (int v : vertices)
-      for (const Eigen::MatrixXd* positions : {&mesh.positions_t0, &mesh.positions_t1})
+      for (const PositionsView* positions : {&mesh.positions_t0, &mesh.positions_t1})
         for (int axis = 0; axis < 3; ++axis) {
           b[axis] = std::min(b[axis], (*positions)(v, axis));
           b[axis + 3] = std::max(b[axis + 3], (*positions)(v, axis));

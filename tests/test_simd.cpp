@@ -195,9 +195,9 @@ TEST(SimdKernels, MatchTheReferenceFilterOnMeshIndexLists) {
   std::vector<std::array<int, 4>> ee(pairs);
   for (auto& p : vf) p = {vertex(random), face(random)};
   for (auto& e : ee) e = {vertex(random), vertex(random), vertex(random), vertex(random)};
-  const simd::PackedPositions packed(t0.data(), t1.data(), vertices);
+  const simd::PackedPositions packed(t0, t1);
   const simd::MeshPositions positions = packed.view();
-  const simd::PackedFaces packed_faces(face_matrix.data(), faces);
+  const simd::PackedFaces packed_faces(face_matrix, faces);
   const simd::MeshVertexFace vf_source{positions, packed_faces.view(), vf.data()};
   const simd::MeshEdgeEdge ee_source{positions, ee.data()};
   for (const reference::FilterSettings& settings : all_settings()) {

@@ -1,6 +1,7 @@
 #include "batchccd/candidates.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -8,7 +9,7 @@
 namespace batchccd {
 namespace {
 
-void check_id(const char* what, int id, Eigen::Index count, const char* caller) {
+void check_id(const char* what, int id, std::int64_t count, const char* caller) {
   if (id < 0 || id >= count)
     throw std::invalid_argument(std::string(caller) + ": " + what + " " + std::to_string(id) +
                                 " out of range [0, " + std::to_string(count) + ")");
@@ -24,21 +25,23 @@ void check_positions(const MeshView& mesh, const char* caller) {
 Query query_of(const MeshView& mesh, const std::array<int, 4>& ids) {
   Query query;
   for (std::size_t k = 0; k < 4; ++k) {
-    query.points[k] = mesh.positions_t0.row(ids[k]).transpose();
-    query.points[k + 4] = mesh.positions_t1.row(ids[k]).transpose();
+    for (int c = 0; c < 3; ++c) {
+      query.points[k][c] = mesh.positions_t0(ids[k], c);
+      query.points[k + 4][c] = mesh.positions_t1(ids[k], c);
+    }
   }
   return query;
 }
 
 }  // namespace
 
-Eigen::MatrixXi unique_edges(const Eigen::MatrixXi& faces) {
+Eigen::MatrixXi unique_edges(const IdsView& faces) {
   if (faces.rows() > 0 && faces.cols() != 3)
     throw std::invalid_argument("unique_edges: faces must have 3 columns, got " +
                                 std::to_string(faces.cols()));
   std::vector<std::array<int, 2>> edges;
   edges.reserve(3 * static_cast<std::size_t>(faces.rows()));
-  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+  for (std::int64_t f = 0; f < faces.rows(); ++f) {
     for (int k = 0; k < 3; ++k) {
       const int a = faces(f, k), b = faces(f, (k + 1) % 3);
       if (a < 0 || b < 0)
@@ -61,7 +64,7 @@ Query vertex_face_query(const MeshView& mesh, const std::array<int, 2>& candidat
   constexpr const char* caller = "vertex_face_query";
   check_positions(mesh, caller);
   const auto [vertex, face] = candidate;
-  const Eigen::Index vertices = mesh.positions_t0.rows();
+  const std::int64_t vertices = mesh.positions_t0.rows();
   check_id("vertex", vertex, vertices, caller);
   check_id("face", face, mesh.faces.cols() == 3 ? mesh.faces.rows() : 0, caller);
   const std::array<int, 4> ids{vertex, mesh.faces(face, 0), mesh.faces(face, 1), mesh.faces(face, 2)};

@@ -7,10 +7,9 @@
 #include <span>
 #include <vector>
 
-#include <Eigen/Core>
-
 #include "batchccd/options.hpp"
 #include "batchccd/query.hpp"
+#include "batchccd/views.hpp"
 
 namespace batchccd {
 
@@ -75,21 +74,38 @@ std::vector<Isa> available_isas();
 BatchResult batch_ccd(Kind kind, std::span<const Query> queries,
                       const Options& options = {});
 
-// Vertex positions at t0 and t1 (n x 3, any length unit), triangles (m x 3
-// vertex ids). References: nothing is copied; the matrices must outlive the
-// view. With an edges matrix too: MeshWithEdgesView (mesh_edges.hpp).
+// A mesh as a simulator holds it, viewed in place (views.hpp: double or
+// float positions, any storage order or strides; nothing is copied, the
+// arrays must outlive the view): vertex positions at t0 and t1 (n x 3, any
+// length unit), triangles (m x 3 vertex ids) and, for candidates given by
+// edge id (mesh_edges.hpp), edges (k x 2 vertex ids). Faces or edges a call
+// does not read may be left empty.
 struct MeshView {
-  const Eigen::MatrixXd& positions_t0;
-  const Eigen::MatrixXd& positions_t1;
-  const Eigen::MatrixXi& faces;
+  PositionsView positions_t0;
+  PositionsView positions_t1;
+  IdsView faces{};
+  IdsView edges{};
 };
 
-// Broad-phase candidates over a mesh.
+// Broad-phase candidates over a mesh by vertex ids, views of the caller's
+// buffers (a std::vector, or any contiguous array of these rows).
+struct CandidateLists {
+  std::span<const std::array<int, 2>> vertex_face{};    // vertex id, face id
+  std::span<const std::array<int, 4>> edge_edge{};      // a0, a1, b0, b1 vertex ids
+  std::span<const std::array<int, 3>> vertex_edge{};    // vertex id, the edge's two vertex ids
+  std::span<const std::array<int, 2>> vertex_vertex{};  // two vertex ids
+};
+
+// The same lists, owned: what a broad phase that keeps its own vectors
+// fills. Converts to CandidateLists (only while it lives: not a temporary).
 struct Candidates {
-  std::vector<std::array<int, 2>> vertex_face{};    // vertex id, face id
-  std::vector<std::array<int, 4>> edge_edge{};      // a0, a1, b0, b1 vertex ids
-  std::vector<std::array<int, 3>> vertex_edge{};    // vertex id, the edge's two vertex ids
-  std::vector<std::array<int, 2>> vertex_vertex{};  // two vertex ids
+  std::vector<std::array<int, 2>> vertex_face{};
+  std::vector<std::array<int, 4>> edge_edge{};
+  std::vector<std::array<int, 3>> vertex_edge{};
+  std::vector<std::array<int, 2>> vertex_vertex{};
+
+  operator CandidateLists() const& { return {vertex_face, edge_edge, vertex_edge, vertex_vertex}; }  // NOLINT
+  operator CandidateLists() const&& = delete;
 };
 
 // One minimum separation per candidate, replacing Options::min_distance
@@ -107,17 +123,17 @@ struct MinDistances {
 // Bad input (tests/test_bad_input.cpp). The whole call is refused, before
 // any result is written, with std::invalid_argument naming the first bad
 // item, when the options fail validate(), positions_t0 and positions_t1
-// differ in row count, a matrix
-// with rows does not have 3 columns, or an index is out of range: a face's
+// differ in row count, positions or faces with rows do not have 3
+// columns, or an index is out of range: a face's
 // vertex, or a candidate's vertex or face id (negative or too large), in
 // every candidate list, also one that Options switches off. An empty mesh
-// (0 rows; default-constructed 0 x 0 matrices too) is valid; with no
+// (0 rows; default-constructed views too) is valid; with no
 // candidates, as with no queries in batch_ccd, the result is empty
 // (earliest_toi = +inf, counters 0). Per candidate (Status in query.hpp): a
 // NaN or infinite position makes exactly the candidates that read that vertex
 // invalid_input; faces with repeated vertices, a vertex of its own face and
 // edges sharing a vertex are evaluated as their geometry.
-BatchResult mesh_ccd(const MeshView& mesh, const Candidates& candidates,
+BatchResult mesh_ccd(const MeshView& mesh, const CandidateLists& candidates,
                      const Options& options = {});
 
 // The same calls writing into `out`, whose vectors keep their storage: a
@@ -125,17 +141,16 @@ BatchResult mesh_ccd(const MeshView& mesh, const Candidates& candidates,
 // its results once they have grown to size, and they are written in
 // parallel. What a call refuses (the exceptions above) leaves `out` as it was.
 void batch_ccd(Kind kind, std::span<const Query> queries, const Options& options, BatchResult& out);
-void mesh_ccd(const MeshView& mesh, const Candidates& candidates, const Options& options,
+void mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const Options& options,
               BatchResult& out);
 
 // With one minimum separation per query or candidate (MinDistances). A
 // span of the wrong length, or a negative, NaN or infinite value, refuses
 // the whole call with std::invalid_argument naming the list, the index and
-// the value. Candidates with a separation > 0 are filtered by the scalar
-// path (the lane kernels test distance 0 only).
+// the value.
 void batch_ccd(Kind kind, std::span<const Query> queries, std::span<const double> min_distances,
                const Options& options, BatchResult& out);
-void mesh_ccd(const MeshView& mesh, const Candidates& candidates, const MinDistances& min_distances,
+void mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const MinDistances& min_distances,
               const Options& options, BatchResult& out);
 
 }  // namespace batchccd

@@ -6,6 +6,7 @@
 
 #include "batchccd/batch.hpp"
 #include "batchccd/query.hpp"
+#include "batchccd/views.hpp"
 
 // What lies between a mesh and the narrow phase: the edges a broad phase
 // needs, and a mesh candidate as the raw Query of batch_ccd and ccd.hpp.
@@ -13,10 +14,10 @@ namespace batchccd {
 
 // The undirected edges of the triangles, each once, as a k x 2 matrix of
 // vertex ids (i, j) with i < j, rows sorted lexicographically; ready for
-// MeshWithEdgesView (mesh_edges.hpp). A face's repeated vertex gives no
+// MeshView::edges (mesh_edges.hpp). A face's repeated vertex gives no
 // edge of its own. Throws std::invalid_argument when faces has rows but not
 // 3 columns, or holds a negative vertex id.
-Eigen::MatrixXi unique_edges(const Eigen::MatrixXi& faces);
+Eigen::MatrixXi unique_edges(const IdsView& faces);
 
 // The query mesh_ccd evaluates for a candidate: its four vertices at t0,
 // then at t1, in Query's point order (vertex, then the face's corners in

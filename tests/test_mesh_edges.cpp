@@ -28,7 +28,7 @@ struct TwoTriangles {
     faces << 0, 1, 2, 3, 4, 5;
     edges << 0, 1, 1, 2, 2, 0, 3, 4, 4, 5, 5, 3;
   }
-  batchccd::MeshWithEdgesView view() const {
+  batchccd::MeshView view() const {
     return {positions_t0, positions_t1, faces, edges};
   }
 };
@@ -96,6 +96,33 @@ TEST(MeshEdges, HonoursOptions) {
   EXPECT_EQ(result.counters.candidates, static_cast<std::int64_t>(edge_edge_pairs.size()));
 }
 
+// Point-edge by edge id (ipc-toolkit's edge-vertex candidates) and
+// point-point pairs: the same answers as the vertex-id lists.
+TEST(MeshEdges, PointKindsByEdgeId) {
+  const TwoTriangles mesh;
+  std::vector<std::array<int, 2>> vertex_edge, vertex_vertex;
+  for (int v = 3; v < 6; ++v)
+    for (int e = 0; e < 3; ++e) vertex_edge.push_back({v, e});
+  for (int p = 0; p < 3; ++p)
+    for (int q = 3; q < 6; ++q) vertex_vertex.push_back({p, q});
+  batchccd::Options options;
+  options.min_distance = 0.3;  // points pass 0.25 from the fixed triangle's edges
+  const batchccd::BatchResult by_edge_id = batchccd::mesh_ccd(
+      mesh.view(), batchccd::EdgeIdCandidates{.vertex_edge = vertex_edge, .vertex_vertex = vertex_vertex}, options);
+
+  batchccd::Candidates by_vertex{.vertex_vertex = vertex_vertex};
+  for (const auto [v, e] : vertex_edge) by_vertex.vertex_edge.push_back({v, mesh.edges(e, 0), mesh.edges(e, 1)});
+  const batchccd::BatchResult expected = batchccd::mesh_ccd(mesh.view(), by_vertex, options);
+  ASSERT_EQ(by_edge_id.results.size(), vertex_edge.size() + vertex_vertex.size());
+  ASSERT_EQ(expected.results.size(), by_edge_id.results.size());
+  for (std::size_t i = 0; i < expected.results.size(); ++i) {
+    EXPECT_EQ(by_edge_id.results[i].hit, expected.results[i].hit) << i;
+    EXPECT_EQ(by_edge_id.results[i].toi, expected.results[i].toi) << i;
+  }
+  EXPECT_GT(expected.counters.hits, 0);
+  EXPECT_LT(expected.counters.hits, expected.counters.candidates);
+}
+
 // The message of the std::invalid_argument that `call` throws ("" if none).
 template <class Call>
 std::string rejection(const Call& call) {
@@ -118,6 +145,20 @@ TEST(MeshEdges, RejectsBadEdgeIds) {
               std::string::npos)
         << message;
   }
+}
+
+TEST(MeshEdges, RejectsBadEdgeIdsOfPointEdgePairs) {
+  const TwoTriangles mesh;
+  const std::vector<std::array<int, 2>> pairs = {{3, 0}, {4, 6}};
+  const std::string message = rejection(
+      [&] { batchccd::mesh_ccd(mesh.view(), batchccd::EdgeIdCandidates{.vertex_edge = pairs}); });
+  EXPECT_NE(message.find("vertex-edge candidate 1: edge 6"), std::string::npos) << message;
+  // Its vertex id is the vertex-id call's to check.
+  const std::vector<std::array<int, 2>> bad_vertex = {{7, 0}};
+  EXPECT_NE(rejection([&] {
+              batchccd::mesh_ccd(mesh.view(), batchccd::EdgeIdCandidates{.vertex_edge = bad_vertex});
+            }).find("vertex-edge candidate 0: vertex 7"),
+            std::string::npos);
 }
 
 TEST(MeshEdges, RejectsBadEdgesMatrix) {
