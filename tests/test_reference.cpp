@@ -10,6 +10,7 @@
 #include "reference/cubic_solver.hpp"
 #include "reference/filter.hpp"
 #include "reference/inclusion_solver.hpp"
+#include "reference/inside_proof.hpp"
 #include "reference/sign_filter.hpp"
 #include "reference/scaled_query.hpp"
 
@@ -199,6 +200,61 @@ TEST(InclusionSolver, StopsAtTheIterationLimitConservatively) {
   EXPECT_TRUE(outcome.hit);
   EXPECT_TRUE(outcome.undecided);
   EXPECT_LE(outcome.toi, 0.5);
+}
+
+// Positions relative to x1 held still (zero-radius balls), in the order of
+// PositionBalls: x2, x3, x4.
+PositionBalls still(const Vec3& x2, const Vec3& x3, const Vec3& x4) {
+  PositionBalls balls;
+  const Vec3 points[3] = {x2, x3, x4};
+  for (int i = 0; i < 3; ++i) balls[i] = {Ball{points[i][0], 0}, Ball{points[i][1], 0}, Ball{points[i][2], 0}};
+  return balls;
+}
+
+TEST(InsideProof, InsideOutsideAndNeither) {
+  const Vec3 b(1, 0, 0), c(0, 1, 0);
+  // Vertex-face, a at the origin: inside, outside past edge bc, on edge bc, degenerate triangle.
+  EXPECT_TRUE(certainly_inside(Kind::vertex_face, still(b, c, Vec3(0.25, 0.25, 0))));
+  EXPECT_FALSE(certainly_outside(Kind::vertex_face, still(b, c, Vec3(0.25, 0.25, 0))));
+  EXPECT_TRUE(certainly_outside(Kind::vertex_face, still(b, c, Vec3(2, 2, 0))));
+  EXPECT_TRUE(certainly_outside(Kind::vertex_face, still(b, c, Vec3(-0.5, 0.25, 0))));
+  EXPECT_FALSE(certainly_inside(Kind::vertex_face, still(b, c, Vec3(2, 2, 0))));
+  for (const Vec3& p : {Vec3(0.5, 0.5, 0), Vec3(0, 0.5, 0)}) {
+    EXPECT_FALSE(certainly_inside(Kind::vertex_face, still(b, c, p)));
+    EXPECT_FALSE(certainly_outside(Kind::vertex_face, still(b, c, p)));
+  }
+  EXPECT_FALSE(certainly_outside(Kind::vertex_face, still(b, b, Vec3(5, 5, 0))));
+  // Edge-edge, edge a from the origin to x2, edge b from x3 to x4: crossing,
+  // missing past a's end, touching at a's end, parallel.
+  EXPECT_TRUE(certainly_inside(Kind::edge_edge, still(b, Vec3(0.5, -1, 0), Vec3(0.5, 1, 0))));
+  EXPECT_FALSE(certainly_outside(Kind::edge_edge, still(b, Vec3(0.5, -1, 0), Vec3(0.5, 1, 0))));
+  EXPECT_TRUE(certainly_outside(Kind::edge_edge, still(b, Vec3(2, -1, 0), Vec3(2, 1, 0))));
+  EXPECT_TRUE(certainly_outside(Kind::edge_edge, still(b, Vec3(0.5, 1, 0), Vec3(0.5, 3, 0))));
+  EXPECT_FALSE(certainly_outside(Kind::edge_edge, still(b, Vec3(1, -1, 0), Vec3(1, 1, 0))));
+  EXPECT_FALSE(certainly_outside(Kind::edge_edge, still(b, Vec3(5, 1, 0), Vec3(6, 1, 0))));
+  // A point as a zero-length edge: never proven either way.
+  EXPECT_FALSE(certainly_outside(Kind::edge_edge, still(Vec3(0, 0, 0), Vec3(5, -1, 0), Vec3(5, 1, 0))));
+}
+
+// Intervals the outside proof drops never held a contact: the solver's
+// decisions with it equal exact mode's on crossings that pass near a
+// triangle's edges and corners in the middle of the step.
+TEST(InsideProof, SolverDecisionsMatchExactNearEdges) {
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> offset(-1e-3, 1e-3);
+  int hits = 0, misses = 0;
+  for (int i = 0; i < 2000; ++i) {
+    // The vertex crosses the plane z = 0 at t = 1/2 near edge bc or corner b.
+    const double x = (i % 2 ? 0.5 : 1.0) + offset(random), y = (i % 2 ? 0.5 : 0.0) + offset(random);
+    const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), drift(offset(random), offset(random), 0);
+    const Query query{{Vec3(x, y, 1) - drift, a, b, c, Vec3(x, y, -1) + drift, a, b, c}};
+    const QueryResult exact = query_ccd(Kind::vertex_face, query, {.mode = Mode::exact});
+    const QueryResult conservative = query_ccd(Kind::vertex_face, query, {});
+    EXPECT_EQ(conservative.hit, exact.hit) << i;
+    (exact.hit ? hits : misses) += 1;
+  }
+  EXPECT_GT(hits, 500);
+  EXPECT_GT(misses, 500);
 }
 
 TEST(CubicSolver, FindsACleanCrossing) {

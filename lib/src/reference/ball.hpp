@@ -15,6 +15,7 @@ struct Ball {
   double radius = 0;
 
   bool certainly_positive() const { return middle > radius; }
+  bool certainly_negative() const { return middle < -radius; }
 };
 
 namespace ball_detail {

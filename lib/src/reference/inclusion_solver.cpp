@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "reference/bernstein.hpp"
@@ -113,11 +114,29 @@ class InclusionSolver {
       }
       const CubicSigns cubic = cubic_signs(ends);
       if (cubic.root_free) continue;
+      const bool wide = time.width() > kWideInterval;
+      if (cubic.certain_root && wide) {
+        // The cubic's signs alone narrow a wide interval to its first root,
+        // far cheaper than any proof or search over all of it. What they
+        // drop before it is root-free, so contact-free; what follows it
+        // waits its turn.
+        const Interval first = narrow_to_first_root(time, kWideInterval);
+        if (first.width() < time.width()) {
+          push(heap, first);
+          if (first.high < time.high) push(heap, Interval{first.high, time.high});
+          continue;
+        }
+      }
+      // Over a narrow interval the positions' balls are tight: coplanar
+      // somewhere in it, but where the projections certainly miss
+      // throughout, it holds no contact and needs no search.
+      const bool prove = !wide || cubic.certain_root;
+      const PositionBalls balls = prove ? position_balls(ends) : PositionBalls{};
+      if (!wide && certainly_outside(kind_, balls)) continue;
       const bool settled = time.width() <= settings_.toi_tolerance || !settings_.need_toi;
       // A certain root and a certain inside test over the interval: a
       // contact lies in it, no need to search the parameters.
-      const bool contact =
-          cubic.certain_root && certainly_inside(kind_, position_balls(ends));
+      const bool contact = cubic.certain_root && certainly_inside(kind_, balls);
       if (!contact) {
         // Wide intervals get a small parameter budget: their search mostly
         // ends unresolved, and splitting time is cheaper.
@@ -128,18 +147,6 @@ class InclusionSolver {
         if (search == Search::out_of_iterations) return {true, time.low, true, false};
         if (search == Search::found && settled)
           return {.hit = true, .toi = time.low, .within_tolerance = true};
-        if (cubic.certain_root && time.width() > kWideInterval) {
-          // Not excluded at a glance: the cubic's signs alone narrow it to
-          // its first root, far cheaper than halving with a parameter search
-          // at every step. What they drop before it is root-free, so
-          // contact-free; what follows it waits its turn.
-          const Interval first = narrow_to_first_root(time, kWideInterval);
-          if (first.width() < time.width()) {
-            push(heap, first);
-            if (first.high < time.high) push(heap, Interval{first.high, time.high});
-            continue;
-          }
-        }
       } else {
         // A certain contact: the inside test holds over all of `time`, so
         // the cubic alone narrows it to its first root, much cheaper than
@@ -351,19 +358,74 @@ class InclusionSolver {
   // right, a certain sign change left, until `width` or a sign too close to
   // call. What it drops on the left is root-free; on the right, whatever
   // follows the returned interval.
+  // The halves come from de Casteljau's averages of the interval's
+  // coefficients rather than from positions interpolated anew: a fraction
+  // of the work, for an error bound that grows by 4 u of the largest
+  // coefficient a halving; once it has doubled, the coefficients are
+  // computed afresh.
   Interval narrow_to_first_root(Interval time, double width) const {
+    HalvedCubic cubic = halved_cubic(endpoints(time));
+    const double fresh_error = cubic.error;
     while (time.width() > width) {
-      const Interval left{time.low, time.middle()};
-      const CubicSigns cubic = cubic_signs(endpoints(left));
-      if (cubic.root_free) {
-        time.low = left.high;
-      } else if (cubic.certain_root) {
-        time = left;
+      if (cubic.error > 2 * fresh_error) cubic = halved_cubic(endpoints(time));
+      const auto [left, right] = cubic.halves();
+      if (left.root_free()) {
+        time.low = time.middle();
+        cubic = right;
+      } else if (left.certain_root()) {
+        time.high = time.middle();
+        cubic = left;
       } else {
         break;
       }
     }
     return time;
+  }
+
+  // The cubic's Bernstein coefficients over an interval, each within
+  // `error` of the exact ones.
+  struct HalvedCubic {
+    double coefficient[4];
+    double error;
+
+    bool positive(int k) const { return coefficient[k] > error; }
+    bool negative(int k) const { return coefficient[k] < -error; }
+    bool root_free() const {
+      const bool all_positive = positive(0) && positive(1) && positive(2) && positive(3);
+      return all_positive || (negative(0) && negative(1) && negative(2) && negative(3));
+    }
+    bool certain_root() const { return (positive(0) && negative(3)) || (negative(0) && positive(3)); }
+
+    // Each new coefficient is an average of averages (at most three
+    // additions, each rounding by u of at most the largest coefficient;
+    // halving is exact but for underflow), and averaging errors keeps
+    // them: so the bound grows by 4 u of the largest plus the underflows.
+    std::pair<HalvedCubic, HalvedCubic> halves() const {
+      const double* c = coefficient;
+      const double c01 = (c[0] + c[1]) * 0.5, c12 = (c[1] + c[2]) * 0.5, c23 = (c[2] + c[3]) * 0.5;
+      const double c012 = (c01 + c12) * 0.5, c123 = (c12 + c23) * 0.5, middle = (c012 + c123) * 0.5;
+      const double largest = std::max({std::fabs(c[0]), std::fabs(c[1]), std::fabs(c[2]), std::fabs(c[3])});
+      const double grown = error + 4 * kUnitRoundoff * largest + 4 * 0x1p-1074;
+      return {HalvedCubic{{c[0], c01, c012, middle}, grown}, HalvedCubic{{middle, c123, c23, c[3]}, grown}};
+    }
+  };
+
+  HalvedCubic halved_cubic(const Endpoints& e) const {
+    const auto& p = e.position;
+    const auto& m = e.magnitude;
+    BernsteinCubic<double> cubic = bernstein_cubic(p[0][0], p[1][0], p[0][1], p[1][1], p[0][2], p[1][2]);
+    bernstein_magnitudes(cubic, m[0][0], m[1][0], m[0][1], m[1][1], m[0][2], m[1][2]);
+    // bernstein_cubic leaves out the binomial weights (1, 3, 3, 1): dividing
+    // them out rounds by u at most.
+    const double* c = cubic.coefficient;
+    HalvedCubic halved{{c[0], c[1] / 3, c[2] / 3, c[3]}, 0};
+    double largest = 0;
+    for (int k = 0; k < 4; ++k) {
+      halved.error = std::max(halved.error, cubic_error_.relative * cubic.magnitude[k] + cubic_error_.floor);
+      largest = std::max(largest, std::fabs(c[k]));
+    }
+    halved.error += kUnitRoundoff * largest + 0x1p-1074;
+    return halved;
   }
 
   struct Image {

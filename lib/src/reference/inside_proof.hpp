@@ -20,4 +20,12 @@ using PositionBalls = std::array<Vector3<Ball>, 3>;
 // interval, this proves a contact there without refining further.
 bool certainly_inside(Kind kind, const PositionBalls& positions);
 
+// The opposite proof: true when, at every t of the interval, the
+// projections certainly miss each other (VF: some edge function negative;
+// EE: a segment parameter of the lines' meeting point outside [0, 1]). A
+// contact without separation needs coplanarity and an overlap at the same
+// time, so an interval where this holds is free of contact whatever the
+// cubic's roots there. Degenerate primitives (n = 0) never pass it.
+bool certainly_outside(Kind kind, const PositionBalls& positions);
+
 }  // namespace batchccd::reference
