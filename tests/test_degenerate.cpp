@@ -5,9 +5,9 @@
 //
 // Conservative mode must get every case right: the hit, and for a hit a time
 // of impact that is never after the true first contact and within 1e-6 of
-// it. Fast and cubic modes may miss degenerate contacts; for them only
+// it. The fast and cubic baselines may miss degenerate contacts; for them only
 // sanity is checked (no NaN, toi in [0, 1] on a hit, +inf otherwise), except
-// on the clean cases at the end, where all three modes must agree.
+// on the clean cases at the end, where all three must agree.
 #include <cmath>
 #include <limits>
 #include <optional>

@@ -14,8 +14,9 @@
 namespace batchccd::lab {
 
 // What decides a call in place of Options::mode. Neither baseline keeps a
-// mode's promise: both may miss contacts (tests/test_baselines.cpp has one
-// both miss at t = 0), and neither bounds its TOI.
+// mode's promise: both may miss contacts (tests/test_baselines.cpp: a
+// contact at t = 0 the modes must find, and both baselines missed), and
+// neither bounds its TOI.
 enum class Baseline {
   none,  // Options::mode decides
   // The certified filters and solver in plain double, without error bounds:
