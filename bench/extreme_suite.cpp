@@ -422,12 +422,12 @@ bool well_formed(const QueryResult& result) {
   return result.hit ? result.toi >= 0 && result.toi <= 1 : result.toi == kInfinity;
 }
 
-ExtremeRow row_against_exact(const ExtremeCategory& category, Mode mode, BatchResult batch,
+ExtremeRow row_against_exact(const ExtremeCategory& category, const lab::Method& method, BatchResult batch,
                              const BatchResult& exact) {
   ExtremeRow row;
   row.category = category.name;
   row.kind = category.kind;
-  row.mode = mode;
+  row.method = method;
   row.queries = static_cast<std::int64_t>(category.queries.size());
   for (std::size_t q = 0; q < category.queries.size(); ++q) {
     const QueryResult& result = batch.results[q];
@@ -465,19 +465,18 @@ std::vector<ExtremeCategory> extreme_categories(int queries_per_category) {
 
 std::vector<ExtremeRow> evaluate_extreme(const std::vector<ExtremeCategory>& categories,
                                          const Options& options) {
-  const auto run = [&](const ExtremeCategory& category, Mode mode) {
-    Options with_mode = options;
-    with_mode.mode = mode;
-    with_mode.time_queries = true;
-    with_mode.per_candidate_results = true;
-    return batch_ccd(category.kind, category.queries, with_mode);
+  const auto run = [&](const ExtremeCategory& category, const lab::Method& method) {
+    Options with_method = method.applied_to(options);
+    with_method.time_queries = true;
+    with_method.per_candidate_results = true;
+    return lab::batch_ccd(category.kind, category.queries, with_method, method.settings());
   };
   std::vector<ExtremeRow> rows;
   for (const ExtremeCategory& category : categories) {
-    const BatchResult exact = run(category, Mode::exact);
-    rows.push_back(row_against_exact(category, Mode::exact, exact, exact));
-    for (const Mode mode : {Mode::conservative, Mode::fast, Mode::cubic})
-      rows.push_back(row_against_exact(category, mode, run(category, mode), exact));
+    const BatchResult exact = run(category, lab::kExact);
+    rows.push_back(row_against_exact(category, lab::kExact, exact, exact));
+    for (const lab::Method& method : {lab::kConservative, lab::kFast, lab::kCubic})
+      rows.push_back(row_against_exact(category, method, run(category, method), exact));
   }
   return rows;
 }
@@ -510,7 +509,7 @@ void write_extreme_table(std::ostream& out, const std::vector<ExtremeRow>& rows)
     std::ostringstream milliseconds;
     milliseconds << std::fixed << std::setprecision(3) << counters.max_query_seconds * 1e3;
     const auto text = [](std::int64_t n) { return std::to_string(n); };
-    line({row.category, to_string(row.kind), to_string(row.mode), text(row.queries),
+    line({row.category, to_string(row.kind), lab::to_string(row.method), text(row.queries),
           text(counters.hits), text(row.agree), text(row.false_negatives),
           text(row.false_positives), text(row.nan_tois), text(row.malformed_tois),
           text(row.late_tois), text(row.truth_disagreements) + "/" + text(row.truth_known),

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "batchccd/batch.hpp"
+#include "batchccd/lab.hpp"
 
 // The stiff and extreme suite: queries built to stress one numerical extreme
 // each (tiny motion against large coordinates, very fast motion, coordinates
@@ -39,7 +40,7 @@ std::vector<ExtremeCategory> extreme_categories(int queries_per_category = 64);
 struct ExtremeRow {
   std::string category;
   Kind kind = Kind::vertex_face;
-  Mode mode = Mode::exact;
+  lab::Method method = lab::kExact;
   std::int64_t queries = 0;
   std::int64_t agree = 0;            // decisions equal to exact mode's
   std::int64_t false_negatives = 0;  // exact says contact, this mode says none
@@ -54,9 +55,10 @@ struct ExtremeRow {
   BatchResult batch;           // the call's per-query results and counters
 };
 
-// Runs batch_ccd on every category in exact, conservative, fast and cubic
-// mode (in that order, four rows a category) with `options`, except that
-// each call gets its mode and asks for time_queries and per-candidate results.
+// Runs batch_ccd on every category in exact and conservative mode and the
+// fast and cubic baselines (in that order, four rows a category) with
+// `options`, except that each call gets its method and asks for
+// time_queries and per-candidate results.
 std::vector<ExtremeRow> evaluate_extreme(const std::vector<ExtremeCategory>& categories,
                                          const Options& options = {});
 

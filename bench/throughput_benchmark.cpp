@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "batchccd/batchccd.hpp"
+#include "batchccd/lab.hpp"
 #include "broad_phase.hpp"
 #include "scenes.hpp"
 #include "simd/filter.hpp"
@@ -150,16 +151,15 @@ void filter_mesh(benchmark::State& state, Isa isa, Kind kind) {
 }
 
 // A whole mesh call, one thread: filter, solver, results.
-void end_to_end(benchmark::State& state, Mode mode, Isa isa) {
+void end_to_end(benchmark::State& state, const lab::Method& method, Isa isa) {
   if (!kernels_for(state, isa)) return;
   const ClothCandidates& data = cloth();
-  Options options;
-  options.mode = mode;
+  Options options = method.applied_to({});
   options.isa = isa;
   options.threads = 1;
   BatchResult result;
   for (auto _ : state) {
-    result = mesh_ccd(data.mesh.view(), data.candidates, options);
+    result = lab::mesh_ccd(data.mesh.view(), data.candidates, options, method.settings());
     benchmark::DoNotOptimize(result.earliest_toi);
   }
   const std::size_t count = data.candidates.vertex_face.size() + data.candidates.edge_edge.size();
@@ -188,10 +188,10 @@ void register_all() {
   }
   benchmark::RegisterBenchmark("StreamingRead/cached", [](benchmark::State& s) { streaming_read(s, cached_queries()); });
   benchmark::RegisterBenchmark("StreamingRead/streamed", [](benchmark::State& s) { streaming_read(s, streamed_queries()); });
-  benchmark::RegisterBenchmark("EndToEnd/cubic", [](benchmark::State& s) { end_to_end(s, Mode::cubic, Isa::scalar); });
-  benchmark::RegisterBenchmark("EndToEnd/conservative/scalar", [](benchmark::State& s) { end_to_end(s, Mode::conservative, Isa::scalar); });
-  benchmark::RegisterBenchmark("EndToEnd/conservative/auto", [](benchmark::State& s) { end_to_end(s, Mode::conservative, Isa::automatic); });
-  benchmark::RegisterBenchmark("EndToEnd/fast/auto", [](benchmark::State& s) { end_to_end(s, Mode::fast, Isa::automatic); });
+  benchmark::RegisterBenchmark("EndToEnd/cubic", [](benchmark::State& s) { end_to_end(s, lab::kCubic, Isa::scalar); });
+  benchmark::RegisterBenchmark("EndToEnd/conservative/scalar", [](benchmark::State& s) { end_to_end(s, lab::kConservative, Isa::scalar); });
+  benchmark::RegisterBenchmark("EndToEnd/conservative/auto", [](benchmark::State& s) { end_to_end(s, lab::kConservative, Isa::automatic); });
+  benchmark::RegisterBenchmark("EndToEnd/fast/auto", [](benchmark::State& s) { end_to_end(s, lab::kFast, Isa::automatic); });
 }
 
 }  // namespace

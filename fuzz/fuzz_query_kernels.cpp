@@ -2,16 +2,16 @@
 // (kernel_input.hpp says how bytes become queries). Every invariant below
 // that breaks aborts with its name, and libFuzzer keeps the input:
 //
-// - well formed, every mode: a non-finite coordinate gives invalid_input with
+// - well formed, every mode and baseline (lab.hpp): a non-finite coordinate gives invalid_input with
 //   hit = true and toi = 0; otherwise status ok, a hit's toi in [0, 1], a
 //   miss's toi = +inf, never NaN;
-// - certified modes (conservative, and exact where the build has it) find
-//   every forced contact, at a toi no later than it;
+// - the modes (conservative, exact) find every forced contact, at a toi no
+//   later than it;
 // - exact says yes => conservative says yes (a conservative "no" there is a
 //   false negative), and the conservative toi is no later than the exact one;
 // - power-of-two scaling (when exact) changes nothing: decision and toi bit
-//   for bit in the scaled-frame modes (conservative, fast), the decision in
-//   exact mode;
+//   for bit in the scaled frame (conservative, the fast baseline), the
+//   decision in exact mode;
 // - batch_ccd and mesh_ccd, in every instruction set this machine runs,
 //   give each query the decision query_ccd (the scalar reference) gives it
 //   alone, with consistent counters.
@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "batchccd/batchccd.hpp"
+#include "batchccd/lab.hpp"
 #include "fuzz_check.hpp"
 #include "kernel_input.hpp"
 
@@ -36,7 +37,6 @@ namespace {
 using batchccd::BatchResult;
 using batchccd::Isa;
 using batchccd::Kind;
-using batchccd::Mode;
 using batchccd::Options;
 using batchccd::Query;
 using batchccd::QueryResult;
@@ -45,31 +45,23 @@ using batchccd::fuzz::ForcedContact;
 using batchccd::fuzz::KernelRecord;
 using batchccd::fuzz::require;
 
-// Mode::exact joins every check below as soon as options.hpp has it.
-template <class M = Mode>
-std::optional<M> exact_mode() {
-  if constexpr (requires { M::exact; }) {
-    return M::exact;
-  } else {
-    return std::nullopt;
-  }
-}
+namespace lab = batchccd::lab;
 
-std::vector<Mode> modes_to_check() {
-  std::vector<Mode> modes{Mode::conservative, Mode::fast, Mode::cubic};
-  if (exact_mode()) modes.push_back(*exact_mode());
-  return modes;
-}
+// In the setup byte's order (kernel_input.hpp): conservative first, exact last.
+constexpr lab::Method kMethods[] = {lab::kConservative, lab::kFast, lab::kCubic, lab::kExact};
 
-bool is_certified(Mode mode) { return mode == Mode::conservative || mode == exact_mode(); }
+bool is_certified(const lab::Method& method) { return method.baseline == lab::Baseline::none; }
+
+QueryResult run(Kind kind, const Query& query, const lab::Method& method, const Options& options) {
+  return lab::query_ccd(kind, query, method.applied_to(options), method.settings());
+}
 
 
 // A fuzz input must not take seconds: a smaller search budget keeps the
-// runs fast, and an exhausted budget is still answered soundly (fast mode:
-// a hit; the certified modes: the exact stage).
-Options options_for(Mode mode, bool need_toi) {
+// runs fast, and an exhausted budget is still answered soundly (the fast
+// baseline: a hit; the modes: the exact stage).
+Options options_for(bool need_toi) {
   Options options;
-  options.mode = mode;
   options.need_toi = need_toi;
   options.max_iterations = 1 << 8;
   options.threads = 1;
@@ -101,41 +93,39 @@ double forced_contact_time(ForcedContact contact) { return contact == ForcedCont
 
 void check_forced_contact(const KernelRecord& record, const QueryResult& r) {
   if (record.contact == ForcedContact::none || r.status != Status::ok) return;
-  require(r.hit, "a certified mode finds a forced contact", batchccd::to_string(record.kind));
+  require(r.hit, "a mode finds a forced contact", batchccd::to_string(record.kind));
   if (record.need_toi) require(r.toi <= forced_contact_time(record.contact), "toi no later than a forced contact");
 }
 
 // Conservative and fast work in a frame scaled by powers of two: the same
 // decision and toi bit for bit. Exact arithmetic: the same decision.
-void check_scaling(const KernelRecord& record, Mode mode, const QueryResult& original) {
+void check_scaling(const KernelRecord& record, const lab::Method& method, const QueryResult& original) {
   const std::optional<Query> scaled = batchccd::fuzz::exactly_scaled(record.query, record.scale_exponent);
   if (!scaled) return;
-  const QueryResult r = batchccd::query_ccd(record.kind, *scaled, options_for(mode, record.need_toi));
+  const QueryResult r = run(record.kind, *scaled, method, options_for(record.need_toi));
   require(r.status == original.status && r.hit == original.hit, "scaling by 2^k keeps the decision",
-          batchccd::to_string(mode));
-  if (mode != exact_mode()) require(r.toi == original.toi, "scaling by 2^k keeps the toi bit for bit",
-                                    batchccd::to_string(mode));
+          lab::to_string(method));
+  if (method != lab::kExact)
+    require(r.toi == original.toi, "scaling by 2^k keeps the toi bit for bit", lab::to_string(method));
 }
 
-// Every mode on one query alone, scaled in the setup's mode; returns the
-// answers in modes_to_check order.
-std::vector<QueryResult> check_alone(const KernelRecord& record, Mode setup_mode) {
+// Every method on one query alone, scaled by the setup's method; returns
+// the answers in kMethods order.
+std::vector<QueryResult> check_alone(const KernelRecord& record, const lab::Method& setup_method) {
   const bool finite = all_finite(record.query);
   std::vector<QueryResult> answers;
-  for (const Mode mode : modes_to_check()) {
-    const QueryResult r = batchccd::query_ccd(record.kind, record.query, options_for(mode, record.need_toi));
+  for (const lab::Method& method : kMethods) {
+    const QueryResult r = run(record.kind, record.query, method, options_for(record.need_toi));
     check_well_formed(r, finite);
-    if (is_certified(mode)) check_forced_contact(record, r);
-    if (mode == setup_mode && mode != Mode::cubic) check_scaling(record, mode, r);
+    if (is_certified(method)) check_forced_contact(record, r);
+    if (method == setup_method && method != lab::kCubic) check_scaling(record, method, r);
     answers.push_back(r);
   }
-  if (exact_mode()) {
-    const QueryResult& conservative = answers.front();
-    const QueryResult& exact = answers.back();
-    if (exact.hit && exact.status == Status::ok) {
-      require(conservative.hit, "conservative says no where exact says yes (a false negative)");
-      if (record.need_toi) require(conservative.toi <= exact.toi + 0x1p-40, "conservative toi no later than exact");
-    }
+  const QueryResult& conservative = answers.front();
+  const QueryResult& exact = answers.back();
+  if (exact.hit && exact.status == Status::ok) {
+    require(conservative.hit, "conservative says no where exact says yes (a false negative)");
+    if (record.need_toi) require(conservative.toi <= exact.toi + 0x1p-40, "conservative toi no later than exact");
   }
   return answers;
 }
@@ -191,20 +181,22 @@ RecordMesh as_mesh(Kind kind, const std::vector<Query>& queries) {
 }
 
 // All queries of one kind (and need_toi) in one call of the setup's entry
-// point, mode and instruction set, against their answers alone.
+// point, method and instruction set, against their answers alone.
 void check_batch(Kind kind, const std::vector<const KernelRecord*>& records, const std::vector<QueryResult>& alone,
-                 bool need_toi, Mode mode, Isa isa, bool through_mesh) {
+                 bool need_toi, const lab::Method& method, Isa isa, bool through_mesh) {
   if (records.empty()) return;
   std::vector<Query> queries;
   for (const KernelRecord* record : records) queries.push_back(record->query);
-  Options options = options_for(mode, need_toi);
+  Options options = method.applied_to(options_for(need_toi));
   options.isa = isa;
   if (through_mesh) {
     const RecordMesh mesh = as_mesh(kind, queries);
-    check_same_decisions(batchccd::mesh_ccd({mesh.t0, mesh.t1, mesh.faces}, mesh.candidates, options), alone,
-                         batchccd::to_string(isa));
+    check_same_decisions(
+        lab::mesh_ccd({mesh.t0, mesh.t1, mesh.faces}, mesh.candidates, options, method.settings()), alone,
+        batchccd::to_string(isa));
   } else {
-    check_same_decisions(batchccd::batch_ccd(kind, queries, options), alone, batchccd::to_string(isa));
+    check_same_decisions(lab::batch_ccd(kind, queries, options, method.settings()), alone,
+                         batchccd::to_string(isa));
   }
 }
 
@@ -212,21 +204,20 @@ void check_batch(Kind kind, const std::vector<const KernelRecord*>& records, con
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const batchccd::fuzz::KernelInput input = batchccd::fuzz::decode_input(std::span(data, size));
-  static const std::vector<Mode> modes = modes_to_check();
   static const std::vector<Isa> isas = batchccd::available_isas();
-  const std::size_t mode_index = input.setup.mode_index % modes.size();
+  const std::size_t method_index = input.setup.mode_index % std::size(kMethods);
   const Isa isa = isas[input.setup.isa_index % isas.size()];
   // A batch call shares one need_toi: group by kind and need_toi.
   for (const Kind kind : {Kind::vertex_face, Kind::edge_edge})
     for (const bool need_toi : {true, false}) {
       std::vector<const KernelRecord*> group;
-      std::vector<QueryResult> alone;  // in the setup's mode
+      std::vector<QueryResult> alone;  // by the setup's method
       for (const KernelRecord& record : input.records) {
         if (record.kind != kind || record.need_toi != need_toi) continue;
         group.push_back(&record);
-        alone.push_back(check_alone(record, modes[mode_index])[mode_index]);
+        alone.push_back(check_alone(record, kMethods[method_index])[method_index]);
       }
-      check_batch(kind, group, alone, need_toi, modes[mode_index], isa, input.setup.mesh);
+      check_batch(kind, group, alone, need_toi, kMethods[method_index], isa, input.setup.mesh);
     }
   return 0;
 }

@@ -7,7 +7,7 @@
 // The setup byte picks the one configuration this input also runs through
 // the batch entry points and scaled (every check on every input made the
 // target 5 times slower; the fuzzer varies the byte like any other):
-//   bits 0-1 mode (index into the checked modes, modulo their count)
+//   bits 0-1 mode or baseline (index into the checked ones, modulo their count)
 //   bits 2-3 instruction set (index into those available, modulo)
 //   bit 4    entry point: 0 batch_ccd, 1 mesh_ccd
 //

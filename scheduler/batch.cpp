@@ -1,4 +1,5 @@
 #include "batchccd/batch.hpp"
+#include "batchccd/lab.hpp"
 
 #include <algorithm>
 #include <numeric>
@@ -14,6 +15,7 @@
 #include <tbb/task_arena.h>
 
 #include "mesh_validation.hpp"
+#include "decider.hpp"
 #include "reference/reference.hpp"
 #include "reference/scaled_query.hpp"
 #include "separation_check.hpp"
@@ -77,8 +79,9 @@ struct Separations {
 template <class Source>
 std::vector<std::size_t> filter_source(const Source& source, std::size_t count,
                                        simd::FilterFunction<Source> lanes, const Options& options,
-                                       const Separations& separations, Partials& partials) {
-  reference::FilterSettings settings = reference::filter_settings(options);
+                                       const lab::Settings& lab, const Separations& separations,
+                                       Partials& partials) {
+  reference::FilterSettings settings = reference::filter_settings(options, lab);
   settings.within = separations.any();
   settings.min_distance = separations.all;
   settings.min_distances = separations.each;
@@ -110,14 +113,14 @@ std::vector<std::size_t> filter_source(const Source& source, std::size_t count,
 // for the rest.
 template <class Source>
 void solve_source(const Source& source, std::size_t count, const std::vector<std::size_t>* survivors,
-                  const Options& options, const Separations& separations, std::size_t offset,
-                  BatchResult& batch, Partials& partials) {
+                  const Options& options, const lab::Settings& lab, const Separations& separations,
+                  std::size_t offset, BatchResult& batch, Partials& partials) {
   const bool filtered = survivors != nullptr;
   const auto evaluate = [&](std::size_t i, Partial& partial) {
     Options own = options;  // a candidate's own separation
     own.min_distance = separations.at(i);
     const reference::Evaluation e =
-        reference::evaluate_query(source.kind, simd::query_at(source, i), own, filtered);
+        reference::evaluate_query(source.kind, simd::query_at(source, i), own, lab, filtered);
     tally(e, partial);
     if (options.per_candidate_results) batch.results[offset + i] = e.result;
     if (options.hit_list && e.result.hit) partial.hits.push_back({offset + i, e.result.toi, e.result.status});
@@ -191,47 +194,59 @@ void reset(BatchResult& out, std::size_t count, const Options& options) {
 
 // The separations of one list: checked (length, values) and wrapped.
 Separations separations_of(std::span<const double> each, std::size_t count, const char* list,
-                           const Options& options) {
+                           const Options& options, const lab::Settings& lab) {
   if (each.empty()) return {options.min_distance, nullptr};
   if (each.size() != count)
     throw std::invalid_argument(std::string("batchccd: ") + list + " min_distances has " +
                                 std::to_string(each.size()) + " values for " + std::to_string(count) +
                                 " candidates");
   for (std::size_t i = 0; i < each.size(); ++i)
-    if (const char* expected = separation_problem(each[i], options.mode))
+    if (const char* expected = separation_problem(each[i], decider_of(options, lab)))
       throw std::invalid_argument(std::string("batchccd: ") + list + " candidate " + std::to_string(i) +
                                   ": min_distance must be " + expected + ", got " + std::to_string(each[i]));
   return {0, each.data()};
 }
 
-void batch_ccd(Kind kind, std::span<const Query> queries, std::span<const double> min_distances,
-               const Options& options, BatchResult& out) {
-  validate(options);
-  const Separations separations = separations_of(min_distances, queries.size(), to_string(kind), options);
+void lab::batch_ccd(Kind kind, std::span<const Query> queries, std::span<const double> min_distances,
+                    const Options& options, const Settings& lab, BatchResult& out) {
+  validate(options, lab);
+  const Separations separations =
+      separations_of(min_distances, queries.size(), batchccd::to_string(kind), options, lab);
   const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
-  const bool filtered = options.mode != Mode::cubic;  // the baseline runs unfiltered
+  const bool filtered = decider_of(options, lab) != Decider::cubic;  // the baseline runs unfiltered
   const simd::RawQueries source =
       simd::raw_queries(reference::evaluated_kind(kind), queries.data(), queries.size());
   in_arena(options, [&] {
     Partials partials;
     std::vector<std::size_t> survivors;
-    if (filtered) survivors = filter_source(source, queries.size(), kernels.raw, options, separations, partials);
+    if (filtered)
+      survivors = filter_source(source, queries.size(), kernels.raw, options, lab, separations, partials);
     reset(out, queries.size(), options);
-    solve_source(source, queries.size(), filtered ? &survivors : nullptr, options, separations, 0, out,
+    solve_source(source, queries.size(), filtered ? &survivors : nullptr, options, lab, separations, 0, out,
                  partials);
     combine(partials, out);
   });
   sort_hits(out);
 }
 
+BatchResult lab::batch_ccd(Kind kind, std::span<const Query> queries, const Options& options,
+                           const Settings& lab) {
+  BatchResult batch;
+  batch_ccd(kind, queries, {}, options, lab, batch);
+  return batch;
+}
+
+void batch_ccd(Kind kind, std::span<const Query> queries, std::span<const double> min_distances,
+               const Options& options, BatchResult& out) {
+  lab::batch_ccd(kind, queries, min_distances, options, {}, out);
+}
+
 void batch_ccd(Kind kind, std::span<const Query> queries, const Options& options, BatchResult& out) {
-  batch_ccd(kind, queries, {}, options, out);
+  lab::batch_ccd(kind, queries, {}, options, {}, out);
 }
 
 BatchResult batch_ccd(Kind kind, std::span<const Query> queries, const Options& options) {
-  BatchResult batch;
-  batch_ccd(kind, queries, options, batch);
-  return batch;
+  return lab::batch_ccd(kind, queries, options, {});
 }
 
 // Point-edge and point-point candidates as the edge-edge candidates they
@@ -245,23 +260,23 @@ std::vector<std::array<int, 4>> as_edge_edge(const CandidateLists& candidates, c
   return pairs;
 }
 
-void mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const MinDistances& min_distances,
-              const Options& options, BatchResult& out) {
-  validate(options);
+void lab::mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const MinDistances& min_distances,
+                   const Options& options, const Settings& lab, BatchResult& out) {
+  validate(options, lab);
   const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
-  const bool filtered = options.mode != Mode::cubic;  // the baseline runs unfiltered
+  const bool filtered = decider_of(options, lab) != Decider::cubic;  // the baseline runs unfiltered
   const std::size_t vertex_face = options.vertex_face ? candidates.vertex_face.size() : 0;
   const std::size_t edge_edge = options.edge_edge ? candidates.edge_edge.size() : 0;
   const std::size_t vertex_edge = options.vertex_edge ? candidates.vertex_edge.size() : 0;
   const std::size_t vertex_vertex = options.vertex_vertex ? candidates.vertex_vertex.size() : 0;
   const Separations vertex_face_separations =
-      separations_of(min_distances.vertex_face, candidates.vertex_face.size(), "vertex-face", options);
+      separations_of(min_distances.vertex_face, candidates.vertex_face.size(), "vertex-face", options, lab);
   const Separations edge_edge_separations =
-      separations_of(min_distances.edge_edge, candidates.edge_edge.size(), "edge-edge", options);
+      separations_of(min_distances.edge_edge, candidates.edge_edge.size(), "edge-edge", options, lab);
   const Separations vertex_edge_separations =
-      separations_of(min_distances.vertex_edge, candidates.vertex_edge.size(), "vertex-edge", options);
-  const Separations vertex_vertex_separations =
-      separations_of(min_distances.vertex_vertex, candidates.vertex_vertex.size(), "vertex-vertex", options);
+      separations_of(min_distances.vertex_edge, candidates.vertex_edge.size(), "vertex-edge", options, lab);
+  const Separations vertex_vertex_separations = separations_of(
+      min_distances.vertex_vertex, candidates.vertex_vertex.size(), "vertex-vertex", options, lab);
   in_arena(options, [&] {
     // The lane filters check the ids of every list they read on the way;
     // here the rest: shapes, faces, lists switched off, the baseline's lists.
@@ -285,13 +300,13 @@ void mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const MinD
     std::vector<std::size_t> survivors[4];
     if (filtered) {
       try {
-        survivors[0] = filter_source(vertex_face_source, vertex_face, kernels.vertex_face, options,
+        survivors[0] = filter_source(vertex_face_source, vertex_face, kernels.vertex_face, options, lab,
                                      vertex_face_separations, partials);
-        survivors[1] = filter_source(edge_edge_source, edge_edge, kernels.edge_edge, options,
+        survivors[1] = filter_source(edge_edge_source, edge_edge, kernels.edge_edge, options, lab,
                                      edge_edge_separations, partials);
-        survivors[2] = filter_source(vertex_edge_source, vertex_edge, kernels.edge_edge, options,
+        survivors[2] = filter_source(vertex_edge_source, vertex_edge, kernels.edge_edge, options, lab,
                                      vertex_edge_separations, partials);
-        survivors[3] = filter_source(vertex_vertex_source, vertex_vertex, kernels.edge_edge, options,
+        survivors[3] = filter_source(vertex_vertex_source, vertex_vertex, kernels.edge_edge, options, lab,
                                      vertex_vertex_separations, partials);
       } catch (const simd::IndexOutOfRange&) {
         check_mesh(mesh, candidates);  // names the first bad id
@@ -300,28 +315,38 @@ void mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const MinD
     }
     reset(out, vertex_face + edge_edge + vertex_edge + vertex_vertex, options);
     const auto solved = [&](int list) { return filtered ? &survivors[list] : nullptr; };
-    solve_source(vertex_face_source, vertex_face, solved(0), options, vertex_face_separations, 0, out,
+    solve_source(vertex_face_source, vertex_face, solved(0), options, lab, vertex_face_separations, 0, out,
                  partials);
-    solve_source(edge_edge_source, edge_edge, solved(1), options, edge_edge_separations, vertex_face, out,
-                 partials);
-    solve_source(vertex_edge_source, vertex_edge, solved(2), options, vertex_edge_separations,
+    solve_source(edge_edge_source, edge_edge, solved(1), options, lab, edge_edge_separations, vertex_face,
+                 out, partials);
+    solve_source(vertex_edge_source, vertex_edge, solved(2), options, lab, vertex_edge_separations,
                  vertex_face + edge_edge, out, partials);
-    solve_source(vertex_vertex_source, vertex_vertex, solved(3), options, vertex_vertex_separations,
+    solve_source(vertex_vertex_source, vertex_vertex, solved(3), options, lab, vertex_vertex_separations,
                  vertex_face + edge_edge + vertex_edge, out, partials);
     combine(partials, out);
   });
   sort_hits(out);
 }
 
+BatchResult lab::mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const Options& options,
+                          const Settings& lab) {
+  BatchResult batch;
+  mesh_ccd(mesh, candidates, MinDistances{}, options, lab, batch);
+  return batch;
+}
+
+void mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const MinDistances& min_distances,
+              const Options& options, BatchResult& out) {
+  lab::mesh_ccd(mesh, candidates, min_distances, options, {}, out);
+}
+
 void mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const Options& options,
               BatchResult& out) {
-  mesh_ccd(mesh, candidates, MinDistances{}, options, out);
+  lab::mesh_ccd(mesh, candidates, MinDistances{}, options, {}, out);
 }
 
 BatchResult mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const Options& options) {
-  BatchResult batch;
-  mesh_ccd(mesh, candidates, options, batch);
-  return batch;
+  return lab::mesh_ccd(mesh, candidates, options, {});
 }
 
 }  // namespace batchccd

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "batchccd/batchccd.hpp"
+#include "batchccd/lab.hpp"
 
 namespace batchccd::testing {
 
@@ -56,8 +57,11 @@ DataRun timed_run(std::string input, Kind kind, std::optional<std::vector<bool>>
   return run;
 }
 
-// Every input with `options` (per-candidate results and query timing on).
-inline std::vector<DataRun> run_shared_data(Options options) {
+// Every input by `method` with `options` (per-candidate results and query
+// timing on).
+inline std::vector<DataRun> run_shared_data(const lab::Method& method, Options options = {}) {
+  options = method.applied_to(options);
+  const lab::Settings settings = method.settings();
   namespace fs = std::filesystem;
   options.per_candidate_results = true;
   options.time_queries = true;
@@ -76,7 +80,7 @@ inline std::vector<DataRun> run_shared_data(Options options) {
     if (!kind) continue;
     const QueryFile queries = read_query_csv(file, *kind);
     runs.push_back(timed_run(file.string(), *kind, queries.truth,
-                             [&] { return batch_ccd(*kind, queries.queries, options); }));
+                             [&] { return lab::batch_ccd(*kind, queries.queries, options, settings); }));
   }
   for (const fs::path& directory : scenes) {
     const Scene scene = read_scene(directory);
@@ -87,7 +91,7 @@ inline std::vector<DataRun> run_shared_data(Options options) {
       one_kind.edge_edge = kind == Kind::edge_edge;
       runs.push_back(timed_run(directory.string(), kind,
                                one_kind.vertex_face ? scene.vertex_face_truth : scene.edge_edge_truth,
-                               [&] { return mesh_ccd(mesh, scene.candidates, one_kind); }));
+                               [&] { return lab::mesh_ccd(mesh, scene.candidates, one_kind, settings); }));
     }
   }
   return runs;

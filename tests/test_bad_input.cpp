@@ -30,6 +30,7 @@
 #include <gtest/gtest.h>
 
 #include "batchccd/batchccd.hpp"
+#include "batchccd/lab.hpp"
 
 namespace {
 
@@ -48,8 +49,10 @@ using batchccd::Vec3;
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr std::array<Mode, 4> kModes{Mode::conservative, Mode::fast, Mode::cubic, Mode::exact};
-// The modes that promise every contact.
+namespace lab = batchccd::lab;
+// The modes and the baselines: bad input is refused or flagged by all alike.
+constexpr std::array<lab::Method, 4> kMethods{lab::kConservative, lab::kFast, lab::kCubic, lab::kExact};
+// The modes, which promise every contact.
 constexpr std::array<Mode, 2> kCertifiedModes{Mode::conservative, Mode::exact};
 constexpr std::array<double, 3> kNonFinite{kNaN, kInfinity, -kInfinity};
 // How much earlier than the true contact a conservative TOI may lie.
@@ -122,17 +125,17 @@ QueryResult run_kind_entry(Kind kind, const Query& q, const Options& options) {
 
 TEST(BadInputNonFinite, AnyNonFiniteCoordinateIsInvalidInEveryModeAndEntryPoint) {
   for (const Kind kind : {Kind::vertex_face, Kind::edge_edge})
-    for (const Mode mode : kModes)
+    for (const lab::Method& method : kMethods)
       for (const double bad : kNonFinite)
         for (int coordinate = 0; coordinate < 24; ++coordinate) {
-          SCOPED_TRACE(std::string(batchccd::to_string(kind)) + " " + batchccd::to_string(mode) +
+          SCOPED_TRACE(std::string(batchccd::to_string(kind)) + " " + lab::to_string(method) +
                        ", coordinate " + std::to_string(coordinate) + " = " + std::to_string(bad));
           // Both a query that would hit and one that would miss: the answer
           // must not depend on what the finite coordinates say.
           for (const Query* base : {&hit_query(kind), &miss_query(kind)}) {
             const Query q = with_coordinate(*base, coordinate, bad);
-            expect_invalid(batchccd::query_ccd(kind, q, with_mode(mode)));
-            expect_invalid(run_kind_entry(kind, q, with_mode(mode)));
+            expect_invalid(lab::query_ccd(kind, q, method.applied_to({}), method.settings()));
+            if (method.baseline == lab::Baseline::none) expect_invalid(run_kind_entry(kind, q, with_mode(method.mode)));
           }
         }
 }
@@ -148,9 +151,10 @@ TEST(BadInputNonFinite, OnlyDecisionAskedStillInvalid) {
 TEST(BadInputNonFinite, LargestFiniteCoordinatesAreEvaluated) {
   const double big = std::numeric_limits<double>::max();
   for (const Kind kind : {Kind::vertex_face, Kind::edge_edge})
-    for (const Mode mode : kModes) {
-      const QueryResult r = batchccd::query_ccd(kind, with_coordinate(miss_query(kind), 0, big), with_mode(mode));
-      EXPECT_EQ(r.status, Status::ok) << batchccd::to_string(mode);
+    for (const lab::Method& method : kMethods) {
+      const QueryResult r =
+          lab::query_ccd(kind, with_coordinate(miss_query(kind), 0, big), method.applied_to({}), method.settings());
+      EXPECT_EQ(r.status, Status::ok) << lab::to_string(method);
       EXPECT_FALSE(std::isnan(r.toi));
     }
 }
@@ -168,18 +172,18 @@ std::vector<Query> mixed_batch(Kind kind) {
 
 TEST(BadInputNonFinite, BatchAnswersValidQueriesAsAloneAndFlagsTheRest) {
   for (const Kind kind : {Kind::vertex_face, Kind::edge_edge})
-    for (const Mode mode : kModes)
+    for (const lab::Method& method : kMethods)
       for (const Isa isa : batchccd::available_isas()) {
-        SCOPED_TRACE(std::string(batchccd::to_string(kind)) + " " + batchccd::to_string(mode) + " " +
+        SCOPED_TRACE(std::string(batchccd::to_string(kind)) + " " + lab::to_string(method) + " " +
                      batchccd::to_string(isa));
         const std::vector<Query> queries = mixed_batch(kind);
-        Options options = with_mode(mode);
+        Options options = method.applied_to({});
         options.isa = isa;
-        const BatchResult batch = batchccd::batch_ccd(kind, queries, options);
+        const BatchResult batch = lab::batch_ccd(kind, queries, options, method.settings());
         ASSERT_EQ(batch.results.size(), queries.size());
         std::int64_t invalid = 0, hits = 0;
         for (std::size_t i = 0; i < queries.size(); ++i) {
-          const QueryResult alone = batchccd::query_ccd(kind, queries[i], with_mode(mode));
+          const QueryResult alone = lab::query_ccd(kind, queries[i], method.applied_to({}), method.settings());
           if (alone.status == Status::invalid_input) {
             expect_invalid(batch.results[i]);
             ++invalid;
@@ -226,13 +230,13 @@ void expect_empty(const BatchResult& batch) {
 
 TEST(BadInputEmpty, EmptyQueryListGivesEmptyResult) {
   for (const Kind kind : {Kind::vertex_face, Kind::edge_edge})
-    for (const Mode mode : kModes)
+    for (const lab::Method& method : kMethods)
       for (const Isa isa : batchccd::available_isas()) {
-        Options options = with_mode(mode);
+        Options options = method.applied_to({});
         options.isa = isa;
-        expect_empty(batchccd::batch_ccd(kind, {}, options));
+        expect_empty(lab::batch_ccd(kind, {}, options, method.settings()));
         options.per_candidate_results = false;
-        expect_empty(batchccd::batch_ccd(kind, std::vector<Query>{}, options));
+        expect_empty(lab::batch_ccd(kind, std::vector<Query>{}, options, method.settings()));
       }
 }
 
@@ -327,12 +331,12 @@ TEST(BadInputDegenerateMesh, DegenerateCandidatesAreEvaluatedAsTheirGeometry) {
 
 TEST(BadInputDegenerateMesh, EveryModeAndInstructionSetGivesWellFormedAnswers) {
   const TestMesh mesh = degenerate_mesh();
-  for (const Mode mode : kModes)
+  for (const lab::Method& method : kMethods)
     for (const Isa isa : batchccd::available_isas()) {
-      SCOPED_TRACE(std::string(batchccd::to_string(mode)) + " " + batchccd::to_string(isa));
-      Options options = with_mode(mode);
+      SCOPED_TRACE(std::string(lab::to_string(method)) + " " + batchccd::to_string(isa));
+      Options options = method.applied_to({});
       options.isa = isa;
-      const BatchResult batch = batchccd::mesh_ccd(mesh.view(), mesh.candidates, options);
+      const BatchResult batch = lab::mesh_ccd(mesh.view(), mesh.candidates, options, method.settings());
       ASSERT_EQ(batch.results.size(), kExpected.size());
       for (const QueryResult& r : batch.results) {
         EXPECT_EQ(r.status, Status::ok);
@@ -497,15 +501,14 @@ TEST(BadInputMesh, BadIdsAnywhereInLongListsAreRefusedAndLeaveTheResultAsItWas) 
       {true, 2301, 1, 1 << 30, "edge-edge candidate 2301: vertex 1073741824 out of range"},
       {true, last_ee, 0, 11, "edge-edge candidate " + std::to_string(last_ee) + ": vertex 11"},
   };
-  for (const Mode mode : {Mode::exact, Mode::conservative, Mode::fast, Mode::cubic})
+  for (const lab::Method& method : {lab::kExact, lab::kConservative, lab::kFast, lab::kCubic})
     for (const Isa isa : batchccd::available_isas()) {
-      Options options;
-      options.mode = mode;
+      Options options = method.applied_to({});
       options.isa = isa;
-      BatchResult out = batchccd::mesh_ccd(good.view(), good.candidates, options);
+      BatchResult out = lab::mesh_ccd(good.view(), good.candidates, options, method.settings());
       const BatchResult before = out;
       for (const Case& c : cases) {
-        SCOPED_TRACE(std::string(batchccd::to_string(mode)) + " " + batchccd::to_string(isa) + ": " + c.words);
+        SCOPED_TRACE(std::string(lab::to_string(method)) + " " + batchccd::to_string(isa) + ": " + c.words);
         TestMesh bad = good;
         if (c.edge_edge) {
           bad.candidates.edge_edge[c.candidate][static_cast<std::size_t>(c.slot)] = c.id;
@@ -513,7 +516,7 @@ TEST(BadInputMesh, BadIdsAnywhereInLongListsAreRefusedAndLeaveTheResultAsItWas) 
           bad.candidates.vertex_face[c.candidate][static_cast<std::size_t>(c.slot)] = c.id;
         }
         try {
-          batchccd::mesh_ccd(bad.view(), bad.candidates, options, out);
+          lab::mesh_ccd(bad.view(), bad.candidates, {}, options, method.settings(), out);
           ADD_FAILURE() << "accepted";
         } catch (const std::invalid_argument& error) {
           EXPECT_NE(std::string(error.what()).find(c.words), std::string::npos) << error.what();

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "batchccd/batchccd.hpp"
+#include "batchccd/lab.hpp"
 
 namespace batchccd {
 namespace {
@@ -134,6 +135,13 @@ TEST(Names, EveryNameReadsBackAsItsValue) {
   EXPECT_EQ(kind_from_string("vf"), Kind::vertex_face);
   EXPECT_EQ(isa_from_string("auto"), Isa::automatic);
   EXPECT_STREQ(to_string(static_cast<Mode>(99)), "?");
+  // The baselines are no modes (lab.hpp names them).
+  EXPECT_EQ(mode_from_string("fast"), std::nullopt);
+  EXPECT_EQ(mode_from_string("cubic"), std::nullopt);
+  EXPECT_STREQ(lab::to_string(lab::kFast), "fast");
+  EXPECT_STREQ(lab::to_string(lab::kCubic), "cubic");
+  EXPECT_STREQ(lab::to_string(lab::kExact), "exact");
+  EXPECT_STREQ(lab::to_string(static_cast<lab::Baseline>(99)), "?");
 }
 
 }  // namespace

@@ -189,7 +189,7 @@ TEST_F(CliTest, HelpDocumentsEveryOption) {
   const CliRun run = run_cli({"run", "--help"});
   EXPECT_EQ(run.exit_code, 0);
   for (const char* option : {"--kind", "--truth", "--mode", "--threads", "--isa", "--json",
-                             "--out", "conservative", "fast", "cubic", "exact", "avx512",
+                             "--out", "conservative", "exact", "avx512",
                              "INPUT", "exact_escalations", "max_query_seconds", "Exit status",
                              "--min-distance", "--tmax", "min_distance", "tmax", "point-edge",
                              "point-point", "vertex-vertex", "8 rows", "6 rows", "4 rows",
@@ -235,11 +235,31 @@ TEST_F(CliTest, BadCommandLinesExitTwoPointingToHelp) {
   }
 }
 
+// fast and cubic, modes until 0.3, are benchmark baselines: an old command
+// line is refused with the value named and told where they went.
+TEST_F(CliTest, FormerModesAreRefusedNamingTheValue) {
+  write_file(path("vf/q.csv"), vertex_face_hit_and_miss);
+  for (const char* former : {"fast", "cubic"}) {
+    const CliRun result = run_cli({"run", "--mode", former, "vf/q.csv"});
+    EXPECT_EQ(result.exit_code, 2) << former << "\n" << result.err;
+    EXPECT_TRUE(result.out.empty()) << former;
+    EXPECT_NE(result.err.find(std::string("'") + former + "' is not a mode (conservative, exact)"),
+              std::string::npos)
+        << result.err;
+    EXPECT_NE(result.err.find("baselines"), std::string::npos) << result.err;
+  }
+  // Any other unknown name: the modes, without the note.
+  const CliRun typo = run_cli({"run", "--mode", "exactly", "vf/q.csv"});
+  EXPECT_EQ(typo.exit_code, 2);
+  EXPECT_NE(typo.err.find("'exactly' is not a mode (conservative, exact)"), std::string::npos) << typo.err;
+  EXPECT_EQ(typo.err.find("baselines"), std::string::npos) << typo.err;
+}
+
 TEST_F(CliTest, AcceptsEveryDocumentedOptionForm) {
   write_file(path("vf/q.csv"), vertex_face_hit_and_miss);
   for (const std::vector<std::string>& arguments :
-       {std::vector<std::string>{"run", "--mode", "fast", "--threads", "2", "vf/q.csv"},
-        std::vector<std::string>{"run", "--mode=cubic", "--isa=scalar", "vf/q.csv"},
+       {std::vector<std::string>{"run", "--mode", "conservative", "--threads", "2", "vf/q.csv"},
+        std::vector<std::string>{"run", "--mode=exact", "--isa=scalar", "vf/q.csv"},
         std::vector<std::string>{"run", "--mode", "exact", "vf/q.csv"},
         std::vector<std::string>{"run", "--isa", "auto", "--kind", "vf", "--", "vf/q.csv"}}) {
     const CliRun result = run_cli(arguments);
@@ -280,9 +300,6 @@ TEST_F(CliTest, BadMinDistanceOrTmaxExitsTwoNamingOptionAndValue) {
     options.tmax = tmax;
     return validate_message(options);
   };
-  batchccd::Options cubic;
-  cubic.mode = batchccd::Mode::cubic;
-  cubic.min_distance = 0.001;
   const std::vector<Case> cases = {
       {{"--min-distance", "-1"}, "--min-distance", refused(-1, 1)},
       {{"--min-distance=-0.5"}, "--min-distance", refused(-0.5, 1)},
@@ -295,8 +312,6 @@ TEST_F(CliTest, BadMinDistanceOrTmaxExitsTwoNamingOptionAndValue) {
       {{"--tmax", "1.5"}, "--tmax", refused(0, 1.5)},
       {{"--tmax=-0.25"}, "--tmax", refused(0, -0.25)},
       {{"--tmax", ""}, "--tmax", "needs a number, not ''"},
-      {{"--mode", "cubic", "--min-distance", "0.001"}, "--min-distance 0.001 with --mode cubic",
-       validate_message(cubic)},
   };
   for (const Case& bad : cases) {
     std::vector<std::string> arguments = {"run"};
@@ -314,8 +329,7 @@ TEST_F(CliTest, BadMinDistanceOrTmaxExitsTwoNamingOptionAndValue) {
   // The ends of the ranges are values like any other.
   for (const std::vector<std::string>& good :
        {std::vector<std::string>{"--min-distance", "0", "--tmax", "1"},
-        std::vector<std::string>{"--min-distance=1e300", "--tmax=4.9e-324"},
-        std::vector<std::string>{"--mode", "cubic", "--min-distance", "0"}}) {
+        std::vector<std::string>{"--min-distance=1e300", "--tmax=4.9e-324"}}) {
     std::vector<std::string> arguments = {"run"};
     arguments.insert(arguments.end(), good.begin(), good.end());
     arguments.push_back("vf/q.csv");
@@ -332,11 +346,9 @@ TEST_F(CliTest, MinDistanceAndTmaxDecide) {
   EXPECT_EQ(within[0].at("min_distance"), "0.3");
   EXPECT_EQ(within[0].at("hits"), "1");
   EXPECT_EQ(within[0].at("false_negatives"), "0");
-  for (const char* mode : {"exact", "fast"}) {
-    const auto other_mode = run_json({"--mode", mode, "--min-distance", "0.3", "vv/pass.csv"});
-    ASSERT_EQ(other_mode.size(), 1u) << mode;
-    EXPECT_EQ(other_mode[0].at("hits"), "1") << mode;
-  }
+  const auto exact = run_json({"--mode", "exact", "--min-distance", "0.3", "vv/pass.csv"});
+  ASSERT_EQ(exact.size(), 1u);
+  EXPECT_EQ(exact[0].at("hits"), "1");
   const auto beyond = run_json({"--min-distance", "0.2", "vv/pass.csv"});
   ASSERT_EQ(beyond.size(), 1u);
   EXPECT_EQ(beyond[0].at("hits"), "0");
@@ -471,7 +483,7 @@ TEST_F(CliTest, JsonHasEveryFieldAndCountsAgainstTruth) {
 
 TEST_F(CliTest, JsonCountsExactEscalationsAndTheSlowestQueryInEveryMode) {
   write_file(path("vertex-face/q.csv"), vertex_face_hit_and_miss);
-  for (const char* mode : {"conservative", "fast", "cubic", "exact"}) {
+  for (const char* mode : {"conservative", "exact"}) {
     const auto objects = run_json({"--mode", mode, "vertex-face/q.csv"});
     ASSERT_EQ(objects.size(), 1u) << mode;
     const auto& object = objects.front();
@@ -481,13 +493,8 @@ TEST_F(CliTest, JsonCountsExactEscalationsAndTheSlowestQueryInEveryMode) {
     const double slowest = std::stod(object.at("max_query_seconds"));
     EXPECT_GE(slowest, 0.0) << mode;
     EXPECT_LE(slowest, std::stod(object.at("seconds"))) << mode;
-    // Only the certified modes use exact arithmetic (here at most for the
-    // hit's TOI).
-    if (std::string(mode) == "exact" || std::string(mode) == "conservative") {
-      EXPECT_LE(std::stoi(object.at("exact_escalations")), 1);
-    } else {
-      EXPECT_EQ(object.at("exact_escalations"), "0") << mode;
-    }
+    // Exact arithmetic here at most for the hit's TOI.
+    EXPECT_LE(std::stoi(object.at("exact_escalations")), 1) << mode;
   }
 }
 

@@ -5,9 +5,9 @@
 //
 // Conservative mode must get every case right: the hit, and for a hit a time
 // of impact that is never after the true first contact and within 1e-6 of
-// it. Fast and cubic modes may miss degenerate contacts; for them only
+// it. The fast and cubic baselines may miss degenerate contacts; for them only
 // sanity is checked (no NaN, toi in [0, 1] on a hit, +inf otherwise), except
-// on the clean cases at the end, where all three modes must agree.
+// on the clean cases at the end, where all three must agree.
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "batchccd/ccd.hpp"
+#include "batchccd/lab.hpp"
 
 namespace {
 
@@ -45,6 +46,11 @@ QueryResult run(Kind kind, const Query& q, const Options& options) {
   if (kind == Kind::vertex_face)
     return batchccd::vertex_face_ccd(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], options);
   return batchccd::edge_edge_ccd(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], options);
+}
+
+// A mode or a baseline (lab.hpp), through the generic entry point.
+QueryResult run(Kind kind, const Query& q, const batchccd::lab::Method& method) {
+  return batchccd::lab::query_ccd(kind, q, method.applied_to({}), method.settings());
 }
 
 // Points at t0 and t1, in the order of Query (VF: p, a, b, c; EE: ea0, ea1, eb0, eb1).
@@ -99,14 +105,15 @@ void check(Kind kind, const Query& q, std::optional<double> true_toi,
   const QueryResult generic = batchccd::query_ccd(kind, q, with_mode(Mode::conservative));
   EXPECT_EQ(generic.hit, r.hit);
   EXPECT_EQ(generic.toi, r.toi);
-  // Fast and cubic: no correctness promise on degenerate input, but no garbage.
+  // The fast and cubic baselines: no correctness promise on degenerate
+  // input, but no garbage.
   {
-    SCOPED_TRACE("fast mode");
-    expect_well_formed(run(kind, q, with_mode(Mode::fast)));
+    SCOPED_TRACE("fast baseline");
+    expect_well_formed(run(kind, q, batchccd::lab::kFast));
   }
   {
-    SCOPED_TRACE("cubic mode");
-    expect_well_formed(run(kind, q, with_mode(Mode::cubic)));
+    SCOPED_TRACE("cubic baseline");
+    expect_well_formed(run(kind, q, batchccd::lab::kCubic));
   }
 }
 
@@ -615,9 +622,10 @@ TEST(DegenerateEdgeEdge, EndpointToEndpointMidStep) {
 
 void check_all_modes_agree(Kind kind, const Query& q, std::optional<double> true_toi,
                            double toi_tolerance) {
-  for (Mode mode : {Mode::conservative, Mode::fast, Mode::cubic}) {
-    SCOPED_TRACE(batchccd::to_string(mode));
-    const QueryResult r = run(kind, q, with_mode(mode));
+  namespace lab = batchccd::lab;
+  for (const lab::Method& method : {lab::kConservative, lab::kFast, lab::kCubic}) {
+    SCOPED_TRACE(lab::to_string(method));
+    const QueryResult r = run(kind, q, method);
     EXPECT_EQ(r.status, Status::ok);
     EXPECT_EQ(r.hit, true_toi.has_value());
     if (r.hit && true_toi) {

@@ -452,7 +452,7 @@ TEST(ExactToi, SlowMotionNeedsTheExactRootOfACertainContact) {
   const Vec3 normal = V(-1, -2, 3);
   const Query q = make(q_point + h * normal, a, b, c, q_point - 2 * h * normal, a, b, c);
   check_vf(q, 1.0L / 3);
-  const reference::Evaluation e = reference::evaluate_query(Kind::vertex_face, q, exact_options());
+  const reference::Evaluation e = reference::evaluate_query(Kind::vertex_face, q, exact_options(), {});
   EXPECT_EQ(e.exact_stage, reference::ExactStage::toi);
   // The certified path's own verdict: a certain contact, a TOI bracket wider
   // than 2^-40 (so only the root was left to exact arithmetic).
@@ -469,7 +469,7 @@ TEST(ExactToi, SlowMotionNeedsTheExactRootOfACertainContact) {
 
 TEST(ExactToi, CleanCrossingNeedsNoExactArithmetic) {
   const Query q = make(V(1, 1, 1), A, B, C, V(1, 1, -2), A, B, C);
-  const reference::Evaluation e = reference::evaluate_query(Kind::vertex_face, q, exact_options());
+  const reference::Evaluation e = reference::evaluate_query(Kind::vertex_face, q, exact_options(), {});
   EXPECT_TRUE(e.result.hit);
   EXPECT_EQ(e.exact_stage, reference::ExactStage::none);
   EXPECT_LE(e.result.toi, 1.0 / 3);
@@ -602,16 +602,15 @@ std::vector<LabeledQuery> shared_queries(std::size_t scene_stride) {
   return all;
 }
 
-// Every input of ../shared/data with one thread in `mode`, run once per
-// mode for the tests below.
-const std::vector<testing::DataRun>& run_shared_data(Mode mode) {
-  static std::map<Mode, std::vector<testing::DataRun>> runs;
-  auto run = runs.find(mode);
+// Every input of ../shared/data with one thread by `method`, run once per
+// method for the tests below.
+const std::vector<testing::DataRun>& run_shared_data(const lab::Method& method) {
+  static std::map<std::string, std::vector<testing::DataRun>> runs;
+  auto run = runs.find(lab::to_string(method));
   if (run == runs.end()) {
     Options options;
-    options.mode = mode;
     options.threads = 1;
-    run = runs.emplace(mode, testing::run_shared_data(options)).first;
+    run = runs.emplace(lab::to_string(method), testing::run_shared_data(method, options)).first;
   }
   return run->second;
 }
@@ -627,8 +626,8 @@ class ExactSharedData : public ::testing::Test {
 // Throughput against conservative mode and the escalations are printed for
 // the record (README, Results).
 TEST_F(ExactSharedData, NoFalsePositiveAndNoFalseNegative) {
-  const auto& exact_run = run_shared_data(Mode::exact);
-  const auto& conservative_run = run_shared_data(Mode::conservative);
+  const auto& exact_run = run_shared_data(lab::kExact);
+  const auto& conservative_run = run_shared_data(lab::kConservative);
   ASSERT_FALSE(exact_run.empty());
   std::int64_t queries = 0, escalations = 0;
   double exact_seconds = 0, conservative_seconds = 0, slowest = 0;
@@ -657,13 +656,13 @@ TEST_F(ExactSharedData, NoFalsePositiveAndNoFalseNegative) {
               1e3 * slowest);
 }
 
-// The TOI promise of the other modes, against the exact first contact
-// (within 2^-40): conservative never reports a contact after it; fast and
-// cubic promise nothing but well-formed results.
-TEST_F(ExactSharedData, OtherModesToiAgainstTheExactFirstContact) {
-  const auto& exact_run = run_shared_data(Mode::exact);
-  for (Mode mode : {Mode::conservative, Mode::fast, Mode::cubic}) {
-    const auto& run = run_shared_data(mode);
+// The TOI promise of conservative mode, against the exact first contact
+// (within 2^-40): never a contact after it; the fast and cubic baselines
+// promise nothing but well-formed results.
+TEST_F(ExactSharedData, OtherMethodsToiAgainstTheExactFirstContact) {
+  const auto& exact_run = run_shared_data(lab::kExact);
+  for (const lab::Method& method : {lab::kConservative, lab::kFast, lab::kCubic}) {
+    const auto& run = run_shared_data(method);
     ASSERT_EQ(run.size(), exact_run.size());
     double latest_lead = 0;  // how much before the first contact conservative reports
     for (std::size_t r = 0; r < run.size(); ++r) {
@@ -678,14 +677,14 @@ TEST_F(ExactSharedData, OtherModesToiAgainstTheExactFirstContact) {
         }
         EXPECT_GE(result.toi, 0.0);
         EXPECT_LE(result.toi, 1.0);
-        if (mode == Mode::conservative && exact_results[i].hit) {
+        if (method == lab::kConservative && exact_results[i].hit) {
           EXPECT_LE(result.toi, exact_results[i].toi + 0x1p-40)
               << run[r].input << " query " << i;
           latest_lead = std::max(latest_lead, exact_results[i].toi - result.toi);
         }
       }
     }
-    if (mode == Mode::conservative)
+    if (method == lab::kConservative)
       std::printf("[ record   ] conservative toi at most %.3g before the exact first contact\n",
                   latest_lead);
   }
@@ -709,7 +708,7 @@ TEST_F(ExactSharedData, RecordsQueryTimesAndEscalations) {
     double exact_best = kInfinity, conservative_best = kInfinity;
     for (int repeat = 0; repeat < 3; ++repeat) {
       const double start = cpu_seconds();
-      const reference::Evaluation e = reference::evaluate_query(q.kind, q.query, exact_options());
+      const reference::Evaluation e = reference::evaluate_query(q.kind, q.query, exact_options(), {});
       const double middle = cpu_seconds();
       query_ccd(q.kind, q.query, conservative);
       const double end = cpu_seconds();

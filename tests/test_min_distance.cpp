@@ -15,6 +15,7 @@
 #include "batchccd/batch.hpp"
 #include "batchccd/ccd.hpp"
 #include "batchccd/io.hpp"
+#include "batchccd/lab.hpp"
 #include "exact_distance.hpp"
 
 namespace batchccd {
@@ -141,19 +142,22 @@ TEST(MinDistance, MakeQueryLaysOutPointKinds) {
   EXPECT_THROW(make_query(Kind::vertex_vertex, t0, t1), std::invalid_argument);
 }
 
-TEST(Tmax, CutsAContactOffInEveryMode) {
+TEST(Tmax, CutsAContactOffInEveryModeAndBaseline) {
   // The vertex crosses the triangle at t = 0.6.
   const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
   const Query crossing{{Vec3(0.2, 0.2, 0.6), a, b, c, Vec3(0.2, 0.2, -0.4), a, b, c}};
-  for (const Mode mode : {Mode::conservative, Mode::exact, Mode::fast, Mode::cubic}) {
-    SCOPED_TRACE(to_string(mode));
-    EXPECT_FALSE(query_ccd(Kind::vertex_face, crossing, with(mode, 0, 0.5)).hit);
-    const QueryResult within = query_ccd(Kind::vertex_face, crossing, with(mode, 0, 0.75));
+  for (const lab::Method& method : {lab::kConservative, lab::kExact, lab::kFast, lab::kCubic}) {
+    SCOPED_TRACE(lab::to_string(method));
+    const auto run = [&](double tmax) {
+      return lab::query_ccd(Kind::vertex_face, crossing, with(method.mode, 0, tmax), method.settings());
+    };
+    EXPECT_FALSE(run(0.5).hit);
+    const QueryResult within = run(0.75);
     EXPECT_TRUE(within.hit);
     EXPECT_NEAR(within.toi, 0.6, 1e-6);
     // Exactly at tmax counts.
-    if (mode == Mode::exact) {
-      EXPECT_TRUE(query_ccd(Kind::vertex_face, crossing, with(mode, 0, 0.6)).hit);
+    if (method == lab::kExact) {
+      EXPECT_TRUE(run(0.6).hit);
     }
   }
   // With a separation of 0.1 the contact starts at t = 0.5.
@@ -178,7 +182,7 @@ TEST(BadOptions, AreRefusedByEveryCall) {
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
   for (const Options& bad : {with(Mode::conservative, -1), with(Mode::conservative, nan), with(Mode::exact, inf),
                              with(Mode::conservative, 0, 0), with(Mode::conservative, 0, 1.5),
-                             with(Mode::conservative, 0, nan), with(Mode::cubic, 0.1)}) {
+                             with(Mode::conservative, 0, nan)}) {
     EXPECT_THROW(query_ccd(Kind::vertex_face, q, bad), std::invalid_argument);
     EXPECT_THROW(batch_ccd(Kind::vertex_face, std::vector<Query>{q}, bad), std::invalid_argument);
     const Eigen::MatrixXd positions = Eigen::MatrixXd::Zero(3, 3);
@@ -202,6 +206,35 @@ TEST(BadOptions, AreRefusedByEveryCall) {
   } catch (const std::invalid_argument& error) {
     EXPECT_NE(std::string(error.what()).find("candidate 1"), std::string::npos) << error.what();
   }
+}
+
+// The cubic baseline finds roots, not distances: every lab call refuses a
+// separation for it, naming the field and the value.
+TEST(BadOptions, CubicBaselineRefusesASeparation) {
+  const Query q = vertex_dipping_to(1);
+  const lab::Settings cubic = lab::kCubic.settings();
+  const Options separated = with(Mode::conservative, 0.1);
+  EXPECT_NO_THROW(validate(separated));  // a mode takes it
+  try {
+    lab::query_ccd(Kind::vertex_face, q, separated, cubic);
+    ADD_FAILURE() << "the cubic baseline took min_distance 0.1";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("min_distance"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("0.1"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("cubic"), std::string::npos) << error.what();
+  }
+  EXPECT_THROW(lab::batch_ccd(Kind::vertex_face, std::vector<Query>{q}, separated, cubic), std::invalid_argument);
+  const Eigen::MatrixXd positions = Eigen::MatrixXd::Zero(3, 3);
+  const Eigen::MatrixXi faces = Eigen::MatrixXi::Zero(0, 3);
+  EXPECT_THROW(lab::mesh_ccd({positions, positions, faces}, CandidateLists{}, separated, cubic), std::invalid_argument);
+  // One per candidate, too; a separation of 0 is no separation.
+  BatchResult out;
+  const std::vector<Query> queries{q, q};
+  const std::vector<double> one_separated{0, 0.1}, none{0, 0};
+  EXPECT_THROW(lab::batch_ccd(Kind::vertex_face, queries, one_separated, Options{}, cubic, out),
+               std::invalid_argument);
+  EXPECT_NO_THROW(lab::batch_ccd(Kind::vertex_face, queries, none, Options{}, cubic, out));
+  EXPECT_EQ(out.results.size(), 2u);
 }
 
 // Random queries of every kind with dyadic coordinates, near misses among them.

@@ -25,6 +25,7 @@
 #include <gtest/gtest.h>
 
 #include "batchccd/ccd.hpp"
+#include "batchccd/lab.hpp"
 
 namespace {
 
@@ -52,14 +53,10 @@ bool coin(Rng& rng, double probability = 0.5) {
   return std::bernoulli_distribution(probability)(rng);
 }
 
-Options with_mode(Mode mode) {
-  Options options;
-  options.mode = mode;
-  return options;
-}
+namespace lab = batchccd::lab;
 
-QueryResult run(Kind kind, const Query& query, Mode mode = Mode::conservative) {
-  return batchccd::query_ccd(kind, query, with_mode(mode));
+QueryResult run(Kind kind, const Query& query, const lab::Method& method = lab::kConservative) {
+  return lab::query_ccd(kind, query, method.applied_to({}), method.settings());
 }
 
 std::string describe(Kind kind, const Query& query) {
@@ -512,16 +509,16 @@ void check_scaling(Kind kind, std::uint64_t seed) {
   int hits = 0;
   for (int n = 0; n < kScalingQueries; ++n) {
     const Query q = random_scaling_query(rng, kind, n % 4);
-    for (Mode mode : {Mode::conservative, Mode::fast}) {
-      const QueryResult base = run(kind, q, mode);
+    for (const lab::Method& method : {lab::kConservative, lab::kFast}) {
+      const QueryResult base = run(kind, q, method);
       hits += base.hit;
       for (int exponent : exponents) {
-        const QueryResult result = run(kind, scaled(q, exponent), mode);
+        const QueryResult result = run(kind, scaled(q, exponent), method);
         EXPECT_EQ(result.hit, base.hit)
-            << batchccd::to_string(mode) << ", scaled by 2^" << exponent << ": "
+            << lab::to_string(method) << ", scaled by 2^" << exponent << ": "
             << describe(kind, q);
         EXPECT_EQ(result.toi, base.toi)
-            << batchccd::to_string(mode) << ", scaled by 2^" << exponent << ": "
+            << lab::to_string(method) << ", scaled by 2^" << exponent << ": "
             << describe(kind, q);
         EXPECT_EQ(result.status, base.status);
       }
@@ -676,9 +673,9 @@ void check_extreme_magnitudes(Kind kind, std::uint64_t seed) {
   Rng rng(seed);
   for (int n = 0; n < 800; ++n) {
     const Query q = random_wild_query(rng, kind, n % 4);
-    for (Mode mode : {Mode::conservative, Mode::fast, Mode::cubic}) {
-      const QueryResult r = run(kind, q, mode);
-      const std::string where = std::string(batchccd::to_string(mode)) + ": " + describe(kind, q);
+    for (const lab::Method& method : {lab::kConservative, lab::kFast, lab::kCubic}) {
+      const QueryResult r = run(kind, q, method);
+      const std::string where = std::string(lab::to_string(method)) + ": " + describe(kind, q);
       EXPECT_EQ(r.status, Status::ok) << where;
       EXPECT_FALSE(std::isnan(r.toi)) << where;
       if (r.hit) {
@@ -715,11 +712,11 @@ TEST(PropertiesNonFinite, NanOrInfiniteCoordinateIsInvalidInputAndHit) {
           const Query hits = random_contact(rng, kind, maker).query;
           for (Query q : {misses, hits}) {
             q.points[point][axis] = bad;
-            for (Mode mode : {Mode::conservative, Mode::fast, Mode::cubic}) {
-              const QueryResult r = run(kind, q, mode);
+            for (const lab::Method& method : {lab::kConservative, lab::kFast, lab::kCubic}) {
+              const QueryResult r = run(kind, q, method);
               EXPECT_EQ(r.status, Status::invalid_input)
-                  << batchccd::to_string(mode) << ": " << describe(kind, q);
-              EXPECT_TRUE(r.hit) << batchccd::to_string(mode) << ": " << describe(kind, q);
+                  << lab::to_string(method) << ": " << describe(kind, q);
+              EXPECT_TRUE(r.hit) << lab::to_string(method) << ": " << describe(kind, q);
             }
           }
         }
@@ -731,8 +728,8 @@ TEST(PropertiesNonFinite, EveryCoordinateNonFinite) {
   Query q;
   for (Vec3& x : q.points) x = Vec3(nan, kInfinity, -kInfinity);
   for (Kind kind : {Kind::vertex_face, Kind::edge_edge})
-    for (Mode mode : {Mode::conservative, Mode::fast, Mode::cubic}) {
-      const QueryResult r = run(kind, q, mode);
+    for (const lab::Method& method : {lab::kConservative, lab::kFast, lab::kCubic}) {
+      const QueryResult r = run(kind, q, method);
       EXPECT_EQ(r.status, Status::invalid_input);
       EXPECT_TRUE(r.hit);
     }

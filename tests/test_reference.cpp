@@ -6,6 +6,7 @@
 #include <random>
 
 #include "batchccd/ccd.hpp"
+#include "batchccd/lab.hpp"
 #include "reference/bernstein.hpp"
 #include "reference/cubic_solver.hpp"
 #include "reference/filter.hpp"
@@ -264,14 +265,13 @@ TEST(CubicSolver, FindsACleanCrossing) {
   EXPECT_FALSE(solve_cubic(Kind::vertex_face, far_apart_vertex_face()).hit);
 }
 
-TEST(Modes, AgreeOnCleanQueries) {
-  for (Mode mode : {Mode::conservative, Mode::fast, Mode::cubic}) {
-    Options options;
-    options.mode = mode;
-    EXPECT_TRUE(query_ccd(Kind::vertex_face, vertex_falling_through_triangle(), options).hit)
-        << to_string(mode);
-    EXPECT_FALSE(query_ccd(Kind::vertex_face, far_apart_vertex_face(), options).hit)
-        << to_string(mode);
+TEST(Methods, AgreeOnCleanQueries) {
+  for (const lab::Method& method : {lab::kConservative, lab::kExact, lab::kFast, lab::kCubic}) {
+    const Options options = method.applied_to({});
+    EXPECT_TRUE(lab::query_ccd(Kind::vertex_face, vertex_falling_through_triangle(), options, method.settings()).hit)
+        << lab::to_string(method);
+    EXPECT_FALSE(lab::query_ccd(Kind::vertex_face, far_apart_vertex_face(), options, method.settings()).hit)
+        << lab::to_string(method);
   }
 }
 

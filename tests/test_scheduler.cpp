@@ -11,6 +11,7 @@
 #include <tbb/task_arena.h>
 
 #include "batchccd/batchccd.hpp"
+#include "batchccd/lab.hpp"
 #include "scenes.hpp"
 #include "broad_phase.hpp"
 
@@ -126,17 +127,18 @@ TEST(Scheduler, EarliestToiOnlyCallsWriteNoResults) {
 }
 
 // The hit list is the sparse form of the per-candidate results, in candidate
-// order, for every thread count and mode; alone it writes no results.
+// order, for every thread count, filtered or not (the cubic baseline); alone
+// it writes no results.
 TEST(Scheduler, HitListsAreTheHitsOfTheResultsInOrder) {
   for (const MeshCase& mesh : mesh_cases()) {
-    for (const Mode mode : {Mode::conservative, Mode::cubic}) {
+    for (const lab::Method& method : {lab::kConservative, lab::kCubic}) {
       for (const int threads : {1, 2, 8}) {
-        const std::string what = mesh.name + " " + to_string(mode) + " threads " + std::to_string(threads);
+        const std::string what =
+            mesh.name + " " + lab::to_string(method) + " threads " + std::to_string(threads);
         Options options;
-        options.mode = mode;
         options.threads = threads;
         options.hit_list = true;
-        const BatchResult both = mesh_ccd(mesh.view(), mesh.candidates, options);
+        const BatchResult both = lab::mesh_ccd(mesh.view(), mesh.candidates, options, method.settings());
         std::vector<Hit> expected;
         for (std::size_t i = 0; i < both.results.size(); ++i)
           if (both.results[i].hit) expected.push_back({i, both.results[i].toi, both.results[i].status});
@@ -148,7 +150,7 @@ TEST(Scheduler, HitListsAreTheHitsOfTheResultsInOrder) {
           ASSERT_EQ(both.hits[k].status, expected[k].status) << what;
         }
         options.per_candidate_results = false;
-        const BatchResult hits_only = mesh_ccd(mesh.view(), mesh.candidates, options);
+        const BatchResult hits_only = lab::mesh_ccd(mesh.view(), mesh.candidates, options, method.settings());
         EXPECT_TRUE(hits_only.results.empty()) << what;
         ASSERT_EQ(hits_only.hits.size(), expected.size()) << what;
         for (std::size_t k = 0; k < expected.size(); ++k)

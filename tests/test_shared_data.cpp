@@ -13,13 +13,9 @@ namespace {
 
 using testing::DataRun;
 
-std::vector<DataRun> run_all_data(Mode mode) {
-  Options options;
-  options.mode = mode;
-  return testing::run_shared_data(options);
-}
+std::vector<DataRun> run_all_data(const lab::Method& method) { return testing::run_shared_data(method); }
 
-void record(const std::vector<DataRun>& runs, Mode mode) {
+void record(const std::vector<DataRun>& runs, const lab::Method& method) {
   std::int64_t queries = 0, false_positives = 0, false_negatives = 0;
   double seconds = 0;
   for (const DataRun& run : runs) {
@@ -30,7 +26,7 @@ void record(const std::vector<DataRun>& runs, Mode mode) {
   }
   std::printf("[ record   ] %s: %lld queries, %lld false positives, %lld false negatives, "
               "%.2f us per query\n",
-              to_string(mode), static_cast<long long>(queries),
+              lab::to_string(method), static_cast<long long>(queries),
               static_cast<long long>(false_positives), static_cast<long long>(false_negatives),
               queries ? 1e6 * seconds / static_cast<double>(queries) : 0.0);
 }
@@ -52,7 +48,7 @@ class SharedData : public ::testing::Test {
 };
 
 TEST_F(SharedData, ConservativeModeMissesNoCollision) {
-  const std::vector<DataRun> runs = run_all_data(Mode::conservative);
+  const std::vector<DataRun> runs = run_all_data(lab::kConservative);
   ASSERT_FALSE(runs.empty());
   for (const DataRun& run : runs) {
     ASSERT_TRUE(run.truth.has_value()) << run.input << " has no ground truth";
@@ -60,19 +56,19 @@ TEST_F(SharedData, ConservativeModeMissesNoCollision) {
     EXPECT_EQ(run.false_negatives(), 0) << run.input << " " << to_string(run.kind);
     expect_counters_match_results(run);
   }
-  record(runs, Mode::conservative);
+  record(runs, lab::kConservative);
 }
 
-TEST_F(SharedData, BaselineModesCountersMatchTheirResults) {
-  for (Mode mode : {Mode::fast, Mode::cubic}) {
-    const std::vector<DataRun> runs = run_all_data(mode);
+TEST_F(SharedData, BaselinesCountersMatchTheirResults) {
+  for (const lab::Method& method : {lab::kFast, lab::kCubic}) {
+    const std::vector<DataRun> runs = run_all_data(method);
     ASSERT_FALSE(runs.empty());
     for (const DataRun& run : runs) {
       ASSERT_TRUE(run.truth.has_value()) << run.input;
       expect_counters_match_results(run);
-      EXPECT_EQ(run.counters.exact_escalations, 0) << run.input << ": no exact stage in " << to_string(mode);
+      EXPECT_EQ(run.counters.exact_escalations, 0) << run.input << ": no exact stage in " << lab::to_string(method);
     }
-    record(runs, mode);
+    record(runs, method);
   }
 }
 

@@ -17,6 +17,7 @@
 
 #include "batchccd/batch.hpp"
 #include "batchccd/ccd.hpp"
+#include "batchccd/lab.hpp"
 #include "extreme_suite.hpp"
 
 namespace batchccd {
@@ -36,7 +37,7 @@ const std::vector<ExtremeCategory>& suite() {
 }
 
 std::string describe(const ExtremeRow& row) {
-  return row.category + " " + to_string(row.kind) + ", " + to_string(row.mode) + " mode";
+  return row.category + " " + to_string(row.kind) + ", " + lab::to_string(row.method);
 }
 
 // A query's points at full precision, to reproduce a failure.
@@ -96,13 +97,12 @@ void expect_consistent_counters(const ExtremeRow& row) {
   EXPECT_LE(counters.culled_by_sign, counters.culled);
   EXPECT_LE(counters.culled_by_separation, counters.culled);
   EXPECT_LE(counters.undecided, counters.hits);
-  if (row.mode == Mode::cubic) {
-    EXPECT_EQ(counters.culled, 0) << "cubic mode runs no filter";
+  if (row.method == lab::kCubic) {
+    EXPECT_EQ(counters.culled, 0) << "the cubic baseline runs no filter";
   }
-  if (row.mode == Mode::fast || row.mode == Mode::cubic) {
+  if (row.method.baseline != lab::Baseline::none) {
     EXPECT_EQ(counters.exact_escalations, 0) << "only the certified modes have an exact stage";
-  }
-  if (row.mode == Mode::exact || row.mode == Mode::conservative) {
+  } else {
     // What the floating-point search cannot settle goes to the exact stage:
     // never a guessed contact (nearly parallel edges once ran out here).
     EXPECT_EQ(counters.undecided, 0);
@@ -140,11 +140,11 @@ TEST(StiffExtreme, EveryModeOnEveryCategory) {
     ASSERT_EQ(row.kind, category.kind);
     expect_well_formed_tois(category, row);
     expect_consistent_counters(row);
-    if (row.mode == Mode::exact) {
+    if (row.method == lab::kExact) {
       expect_mixed_answers(row);
       expect_exact_matches_construction(category, row);
     }
-    if (row.mode == Mode::conservative) expect_conservative_misses_nothing(row);
+    if (row.method == lab::kConservative) expect_conservative_misses_nothing(row);
   }
 }
 
@@ -178,15 +178,14 @@ struct HandCase {
 };
 
 // Exact and conservative mode decide right, with TOIs never after the first
-// contact (exact: within 2^-40 of it); fast and cubic answer in range.
+// contact (exact: within 2^-40 of it); the fast and cubic baselines answer
+// in range.
 void expect_answers(const std::vector<HandCase>& cases) {
   for (const HandCase& hand : cases) {
     SCOPED_TRACE(hand.name);
-    for (const Mode mode : {Mode::exact, Mode::conservative, Mode::fast, Mode::cubic}) {
-      SCOPED_TRACE(to_string(mode));
-      Options options;
-      options.mode = mode;
-      const QueryResult result = query_ccd(hand.kind, hand.query, options);
+    for (const lab::Method& method : {lab::kExact, lab::kConservative, lab::kFast, lab::kCubic}) {
+      SCOPED_TRACE(lab::to_string(method));
+      const QueryResult result = lab::query_ccd(hand.kind, hand.query, method.applied_to({}), method.settings());
       ASSERT_EQ(result.status, Status::ok);
       ASSERT_FALSE(std::isnan(result.toi));
       if (result.hit) {
@@ -195,11 +194,11 @@ void expect_answers(const std::vector<HandCase>& cases) {
       } else {
         EXPECT_EQ(result.toi, kInfinity);
       }
-      if (mode != Mode::exact && mode != Mode::conservative) continue;
+      if (method.baseline != lab::Baseline::none) continue;
       EXPECT_EQ(result.hit, hand.first_contact.has_value()) << "toi " << result.toi;
       if (!result.hit || !hand.first_contact) continue;
       EXPECT_LE(result.toi, *hand.first_contact);
-      if (mode == Mode::exact) {
+      if (method == lab::kExact) {
         EXPECT_GE(result.toi, *hand.first_contact - kExactToiWidth);
       }
     }

@@ -36,27 +36,34 @@ const MethodEntry& entry(Method method) {
   throw std::invalid_argument("unknown method");
 }
 
+// A method of the engine's: a mode, or a baseline (lab.hpp).
+struct EngineCall {
+  Options options;
+  lab::Settings settings;
+};
+
 // Every method hands back its hits only, as a simulator would ask: one
 // result per candidate (24 bytes, most of them "no contact") would cost as
 // much as the filters, and the same for every method.
-Options engine_options(Method method, int threads) {
-  Options options;
+EngineCall engine_call(Method method, int threads) {
+  EngineCall call;
+  Options& options = call.options;
   options.threads = threads;
   options.per_candidate_results = false;
   options.hit_list = true;
   switch (method) {
     case Method::exact: options.mode = Mode::exact; break;
     case Method::conservative: options.mode = Mode::conservative; break;
-    case Method::fast: options.mode = Mode::fast; break;
-    case Method::cubic: options.mode = Mode::cubic; break;
+    case Method::fast: call.settings.baseline = lab::Baseline::fast; break;
+    case Method::cubic: call.settings.baseline = lab::Baseline::cubic; break;
     case Method::dnf:
       options.mode = Mode::conservative;
-      options.sign_filter_subdivision = false;
-      options.separation_filter = false;
+      call.settings.sign_filter_subdivision = false;
+      call.settings.separation_filter = false;
       break;
     case Method::fcl: throw std::invalid_argument("fcl is not one of batchccd's modes");
   }
-  return options;
+  return call;
 }
 
 // The peer on every candidate, parallel like the engine (FCL is thread-safe
@@ -122,7 +129,8 @@ MethodRun run_method(Method method, const Workload& workload, int threads, int r
     if (method == Method::fcl) {
       hits = run_fcl(workload, threads);
     } else {
-      BatchResult batch = workload.run(engine_options(method, threads));
+      const EngineCall call = engine_call(method, threads);
+      BatchResult batch = workload.run(call.options, call.settings);
       hits = std::move(batch.hits);
       run.culled = batch.counters.culled;
     }

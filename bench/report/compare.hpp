@@ -16,8 +16,8 @@ namespace batchccd::bench {
 enum class Method {
   exact,         // Mode::exact
   conservative,  // Mode::conservative, both lane filters
-  fast,          // Mode::fast
-  cubic,         // Mode::cubic: the unfiltered cubic solver, the baseline
+  fast,          // lab::Baseline::fast
+  cubic,         // lab::Baseline::cubic: the unfiltered cubic solver, the baseline
   dnf,           // conservative with the DNF-style filter: four signs, no V = 2 step, no separation filter
   fcl,           // FCL 0.7's fcl::detail::Intersect, an outside peer
 };

@@ -287,7 +287,7 @@ void run_demo(const DemoSettings& settings, std::ostream& out, std::ostream* ter
     const auto rows = scenes::evaluate_extreme(scenes::extreme_categories(), {.threads = settings.threads});
     progress.clear();
     std::ostringstream extreme;
-    extreme << "Stiff and extreme inputs (each mode against exact mode)\n";
+    extreme << "Stiff and extreme inputs (each mode and baseline against exact mode)\n";
     scenes::write_extreme_table(extreme, rows);
     report.add(extreme.str() + '\n');
   }

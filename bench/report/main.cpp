@@ -34,11 +34,11 @@ int main_of(int argc, char** argv) {
   CLI::App* demo_command = app.add_subcommand(
       "demo",
       "Generates a built-in scene, runs a swept-box broad phase on it, and runs every method on "
-      "the candidates: exact, conservative, fast and cubic modes, the DNF-style filter variant "
+      "the candidates: exact and conservative mode, the fast and cubic baselines, the DNF-style filter "
       "and FCL (when built with it). Prints, per method, run time, candidates per second, "
       "speed-up against cubic, cull ratio, false negatives and positives, and TOI error, all "
-      "against exact mode; then what each part of a call costs, and each mode on the stiff and "
-      "extreme suite. Writes report.txt, methods.csv, plot.gp and plot.png (gnuplot). About 35 s "
+      "against exact mode; then what each part of a call costs, and each mode and baseline on the "
+      "stiff and extreme suite. Writes report.txt, methods.csv, plot.gp and plot.png (gnuplot). About 35 s "
       "on 2 cores.");
   demo_command->add_option("--scene", scene,
                            "cloth: a sheet draping, folding and twisting onto itself, 12 steps; "

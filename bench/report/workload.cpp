@@ -24,18 +24,20 @@ Query Workload::query_at(std::size_t i) const {
                          : edge_edge_query(mesh.view(), mesh.candidates.edge_edge[i - vertex_face]);
 }
 
-BatchResult Workload::run(const Options& options) const {
+BatchResult Workload::run(const Options& options, const lab::Settings& settings) const {
   BatchResult result;
-  run(options, result);
+  run(options, settings, result);
   return result;
 }
 
-void Workload::run(const Options& options, BatchResult& out) const {
+void Workload::run(const Options& options, BatchResult& out) const { run(options, {}, out); }
+
+void Workload::run(const Options& options, const lab::Settings& settings, BatchResult& out) const {
   if (const auto* raw = std::get_if<RawWorkload>(&source)) {
-    batch_ccd(raw->kind, raw->queries, options, out);
+    lab::batch_ccd(raw->kind, raw->queries, {}, options, settings, out);
   } else {
     const auto& mesh = std::get<MeshWorkload>(source);
-    mesh_ccd(mesh.view(), mesh.candidates, options, out);
+    lab::mesh_ccd(mesh.view(), mesh.candidates, {}, options, settings, out);
   }
 }
 

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "batchccd/batchccd.hpp"
+#include "batchccd/lab.hpp"
 #include "run.hpp"
 
 // What the comparison commands (demo, report) run every method on: a list
@@ -43,8 +44,9 @@ struct Workload {
   Query query_at(std::size_t i) const;  // candidate i as a raw query
   // The engine's own path for the whole list: batch_ccd or mesh_ccd, into a
   // new result or into `out`.
-  BatchResult run(const Options& options) const;
+  BatchResult run(const Options& options, const lab::Settings& settings = {}) const;
   void run(const Options& options, BatchResult& out) const;
+  void run(const Options& options, const lab::Settings& settings, BatchResult& out) const;
 };
 
 // A query file or scene found by find_inputs (run.hpp), read in full; a

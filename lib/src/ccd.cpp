@@ -1,4 +1,5 @@
 #include "batchccd/ccd.hpp"
+#include "batchccd/lab.hpp"
 
 #include <array>
 
@@ -8,9 +9,13 @@
 
 namespace batchccd {
 
+QueryResult lab::query_ccd(Kind kind, const Query& query, const Options& options, const Settings& settings) {
+  validate(options, settings);
+  return reference::evaluate_query(reference::evaluated_kind(kind), query, options, settings).result;
+}
+
 QueryResult query_ccd(Kind kind, const Query& query, const Options& options) {
-  validate(options);
-  return reference::evaluate_query(reference::evaluated_kind(kind), query, options).result;
+  return lab::query_ccd(kind, query, options, {});
 }
 
 QueryResult vertex_face_ccd(const Vec3& p_t0, const Vec3& a_t0, const Vec3& b_t0,

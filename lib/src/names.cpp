@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "batchccd/batch.hpp"
+#include "batchccd/lab.hpp"
 
 namespace batchccd {
 namespace {
@@ -11,10 +12,9 @@ constexpr EnumName<Kind> kKinds[] = {{"vf", Kind::vertex_face},
                                      {"ee", Kind::edge_edge},
                                      {"ve", Kind::vertex_edge},
                                      {"vv", Kind::vertex_vertex}};
-constexpr EnumName<Mode> kModes[] = {{"conservative", Mode::conservative},
-                                     {"fast", Mode::fast},
-                                     {"cubic", Mode::cubic},
-                                     {"exact", Mode::exact}};
+constexpr EnumName<Mode> kModes[] = {{"conservative", Mode::conservative}, {"exact", Mode::exact}};
+constexpr EnumName<lab::Baseline> kBaselines[] = {
+    {"none", lab::Baseline::none}, {"fast", lab::Baseline::fast}, {"cubic", lab::Baseline::cubic}};
 constexpr EnumName<Isa> kIsas[] = {{"auto", Isa::automatic}, {"scalar", Isa::scalar},
                                    {"sse4", Isa::sse4},      {"avx2", Isa::avx2},
                                    {"avx512", Isa::avx512}};
@@ -43,6 +43,10 @@ std::span<const EnumName<Isa>> isa_names() { return kIsas; }
 const char* to_string(Kind kind) { return name_in(kind_names(), kind); }
 const char* to_string(Mode mode) { return name_in(mode_names(), mode); }
 const char* to_string(Isa isa) { return name_in(isa_names(), isa); }
+const char* lab::to_string(Baseline baseline) { return name_in<Baseline>(kBaselines, baseline); }
+const char* lab::to_string(const Method& method) {
+  return method.baseline == Baseline::none ? batchccd::to_string(method.mode) : to_string(method.baseline);
+}
 
 std::optional<Kind> kind_from_string(std::string_view name) { return value_in(kind_names(), name); }
 std::optional<Mode> mode_from_string(std::string_view name) { return value_in(mode_names(), name); }

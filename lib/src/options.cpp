@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "batchccd/lab.hpp"
 #include "separation_check.hpp"
 
 namespace batchccd {
@@ -18,8 +19,10 @@ namespace {
 
 }  // namespace
 
-void validate(const Options& options) {
-  if (const char* expected = separation_problem(options.min_distance, options.mode))
+void validate(const Options& options) { lab::validate(options, {}); }
+
+void lab::validate(const Options& options, const Settings& settings) {
+  if (const char* expected = separation_problem(options.min_distance, decider_of(options, settings)))
     refuse("min_distance", options.min_distance, expected);
   if (!(options.tmax > 0 && options.tmax <= 1)) refuse("tmax", options.tmax, "in (0, 1]");
 }

@@ -21,8 +21,9 @@ struct Counters {
   std::int64_t culled_by_separation = 0;  // by the separation filter (it sees what the sign filter kept)
   std::int64_t solved = 0;      // sent to the solver (candidates - culled)
   std::int64_t hits = 0;
-  // Reported as hits without a decision: the fast solver ran out of
-  // iterations, or the exact stage reached its bound.
+  // Reported as hits without a decision: with min_distance > 0, the search
+  // ran out of Options::max_iterations or (exact mode) the query lies in the
+  // undecided band; or the exact stage reached its bound.
   std::int64_t undecided = 0;
   std::int64_t invalid = 0;     // Status::invalid_input
   // Exact and conservative modes: queries whose decision (or, exact mode,

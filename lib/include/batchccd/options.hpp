@@ -8,7 +8,8 @@ namespace batchccd {
 // coming within Options::min_distance of each other (Euclidean distance;
 // touching when it is 0, the default) at some t in [0, Options::tmax];
 // QueryResult::toi is then the reported time of impact. What each mode
-// promises of both:
+// promises of both (the uncertified baselines the benchmarks compare with,
+// fast and cubic, are not modes: they may miss contacts):
 enum class Mode {
   // Certified floating point: never a false negative on any finite input; a
   // false positive only when the primitives come within `tolerance` (relative
@@ -29,19 +30,6 @@ enum class Mode {
   // reported contact is. Queries counted in Counters::undecided report a
   // lower bound only.
   conservative,
-  // The same filter and solver in plain double arithmetic, without error
-  // bounds: what most engines ship. May miss contacts.
-  // TOI: usually as in conservative mode; no guarantee, it may lie after the
-  // first contact. With min_distance > 0 the same search as conservative mode
-  // without error bounds.
-  fast,
-  // The standard unfiltered cubic solver (roots of the coplanarity cubic in
-  // double, then an inside test at each root): the seed paper's baseline.
-  // May miss contacts.
-  // TOI: the double estimate of the first root that passes the inside test;
-  // no guarantee. The cubic has no meaning with min_distance > 0: a call
-  // that asks for both throws std::invalid_argument.
-  cubic,
   // Decisions equal to exact arithmetic on the inputs (doubles are dyadic
   // rationals): no false positive and no false negative on any finite input.
   // The certified path runs first; every query whose decision it leaves
@@ -74,9 +62,9 @@ enum class Isa { automatic, scalar, sse4, avx2, avx512 };
 const char* to_string(Mode mode);
 const char* to_string(Isa isa);
 
-// Every knob of a call, with its default. Every call checks min_distance,
-// tmax and mode (validate, below); the other values are not validated, and
-// the comments say what an out-of-range one does.
+// Every knob of a call, with its default. Every call checks min_distance
+// and tmax (validate, below); the other values are not validated, and the
+// comments say what an out-of-range one does.
 
 struct Options {
   Mode mode = Mode::conservative;
@@ -88,9 +76,9 @@ struct Options {
   // (batch.hpp), which replaces this one.
   double min_distance = 0;
   // The end of the time window, in (0, 1]: a contact after tmax is not a
-  // hit. Conservative and fast modes may count one less than toi_tolerance
-  // after it; exact mode compares with it exactly (with min_distance > 0,
-  // but for its undecided band).
+  // hit. Conservative mode may count one less than toi_tolerance after it;
+  // exact mode compares with it exactly (with min_distance > 0, but for its
+  // undecided band).
   double tmax = 1;
 
   // false: only hit/no-hit is needed; the solver stops at the first contact
@@ -113,39 +101,30 @@ struct Options {
   // form of the same answers, costing only what there is to list.
   bool hit_list = false;
 
-  // The lane filters (docs/design.md §3-4), each certified in conservative and
-  // exact modes; switch one off to measure the other. Mode cubic runs none.
-  // The sign filter runs first, the separation filter on what it keeps.
-  bool sign_filter = true;        // Bernstein sign test on the coplanarity cubic
-  // The sign test's V = 2 step (subdivision at t = 1/2 when the four signs
-  // are mixed); false leaves the four signs alone, the DNF-style filter of
-  // Tang et al. 2010, for comparison.
-  bool sign_filter_subdivision = true;
-  bool separation_filter = true;  // distance at t0 against the largest displacement
-
   Isa isa = Isa::automatic;
 
   // Worker threads for batch calls; 0 (or negative) = as many as the calling
   // thread's task arena has: all the machine has unless the caller limited it.
   int threads = 0;
 
-  // Conservative/fast solver: a contact is reported when the primitives are
-  // within `tolerance` of each other, measured relative to the query's size
-  // (its largest coordinate difference from the first point) around that
-  // time -- over the time interval the solver examines, not the whole
-  // step, so a vertex moving far does not widen the tolerance where the
-  // primitives meet (never wider than over the whole step). Zero,
-  // negative or NaN: nothing is within tolerance, so near contacts go to
-  // the exact stage (conservative) or run out of iterations (fast).
+  // The certified solver (conservative mode; exact mode's first pass): a
+  // contact is reported when the primitives are within `tolerance` of each
+  // other, measured relative to the query's size (its largest coordinate
+  // difference from the first point) around that time -- over the time
+  // interval the solver examines, not the whole step, so a vertex moving far
+  // does not widen the tolerance where the primitives meet (never wider than
+  // over the whole step). Zero, negative or NaN: nothing is within
+  // tolerance, so near contacts go to the exact stage.
   double tolerance = 1e-9;
-  // Conservative/fast solver: width of the time interval at which the first
+  // Conservative mode: width of the time interval at which the first
   // contact is located (the reported TOI lies at most this much before it).
   // A fraction of the step [0, 1]; values below 2^-45 act as 2^-45.
   double toi_tolerance = 1e-7;
-  // Fast solver: boxes examined before giving up on one query, which is
-  // then reported as a hit at the earliest time not yet excluded and
-  // counted in Counters::undecided. Also a cap on exact_stage_iterations.
-  // Zero or negative: the solver gives up at the first box it examines.
+  // With min_distance > 0 (no exact stage there): boxes the search examines
+  // on one query before giving up; the query is then reported as a hit at
+  // the earliest time not yet excluded and counted in Counters::undecided.
+  // Also a cap on exact_stage_iterations. Zero or negative: the search gives
+  // up at the first box it examines.
   std::int64_t max_iterations = 1 << 20;
   // Exact and conservative modes: boxes the certified solver may examine on
   // one query before the query goes to exact arithmetic (no answer is ever
@@ -155,14 +134,17 @@ struct Options {
   std::int64_t exact_stage_iterations = 1 << 10;
 
   // Batch calls: time each query's evaluation and report the slowest in
-  // Counters::max_query_seconds. Costs two clock reads a query, so it is
-  // off unless asked for (the command-line tool asks).
+  // Counters::max_query_seconds, the worst single-query latency on the
+  // caller's own data (a near-degenerate query settled exactly can cost
+  // milliseconds where most take nanoseconds). Changes no answer; costs two
+  // clock reads a query, so it is off unless asked for (the command-line
+  // tool asks).
   bool time_queries = false;
 };
 
 // Throws std::invalid_argument naming the field and its value when
-// min_distance is negative, NaN or infinite, tmax is not in (0, 1], or
-// mode is cubic with min_distance > 0. Every call does this first.
+// min_distance is negative, NaN or infinite, or tmax is not in (0, 1].
+// Every call does this first.
 void validate(const Options& options);
 
 }  // namespace batchccd

@@ -4,7 +4,7 @@
 
 namespace batchccd::reference {
 
-// The standard unfiltered solver, kept as the baseline (Options mode cubic):
+// The standard unfiltered solver, kept as the baseline (lab::Baseline::cubic):
 // the coplanarity cubic's monomial coefficients in double, its roots in
 // [0, 1] by bisection between the critical points, and at each root in time
 // order a plain double inside test (barycentric signs for VF, segment

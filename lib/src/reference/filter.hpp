@@ -2,14 +2,16 @@
 
 #include <cstddef>
 
+#include "batchccd/lab.hpp"
 #include "batchccd/options.hpp"
+#include "decider.hpp"
 #include "reference/scaled_query.hpp"
 
 namespace batchccd::reference {
 
 // Which lane filters run, and how (docs/design.md §3-4).
 struct FilterSettings {
-  bool certified = true;   // cull only when error bounds prove it; else plain signs (fast mode)
+  bool certified = true;   // cull only when error bounds prove it; else plain signs (the fast baseline)
   bool sign = true;        // the Bernstein sign test on the coplanarity cubic
   bool subdivide = true;   // its V = 2 step (false: DNF-style, the four signs only)
   bool separation = true;  // distance at t = 0 against the largest displacement
@@ -24,10 +26,10 @@ struct FilterSettings {
   }
 };
 
-// The filters a call's options ask for (mode cubic runs none: callers skip them).
-inline FilterSettings filter_settings(const Options& options) {
-  return {options.mode != Mode::fast, options.sign_filter, options.sign_filter_subdivision,
-          options.separation_filter, options.min_distance > 0, options.min_distance};
+// The filters a call asks for (the cubic baseline runs none: callers skip them).
+inline FilterSettings filter_settings(const Options& options, const lab::Settings& lab) {
+  return {decider_of(options, lab) != Decider::fast, lab.sign_filter, lab.sign_filter_subdivision,
+          lab.separation_filter, options.min_distance > 0, options.min_distance};
 }
 
 // What each filter said of one query. The sign filter runs first; the

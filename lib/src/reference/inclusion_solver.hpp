@@ -7,7 +7,7 @@
 namespace batchccd::reference {
 
 struct SolverSettings {
-  bool certified = true;       // false: plain double, no error bounds (fast mode)
+  bool certified = true;       // false: plain double, no error bounds (the fast baseline)
   bool need_toi = true;
   double tolerance = 1e-9;     // distance, in the scaled frame (query size ~1)
   double toi_tolerance = 1e-7;

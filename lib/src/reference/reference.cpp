@@ -10,15 +10,16 @@
 #include "reference/filter.hpp"
 #include "reference/inclusion_solver.hpp"
 #include "reference/scaled_query.hpp"
+#include "decider.hpp"
 
 namespace batchccd::reference {
 namespace {
 
 const double kExactToiWidth = std::ldexp(1.0, -static_cast<int>(exact::kToiBits));
 
-SolverSettings solver_settings(const Options& options) {
+SolverSettings solver_settings(const Options& options, Decider decider) {
   SolverSettings settings;
-  settings.certified = options.mode != Mode::fast;
+  settings.certified = decider != Decider::fast;
   settings.need_toi = options.need_toi;
   settings.tolerance = options.tolerance;
   settings.toi_tolerance = options.toi_tolerance;
@@ -27,7 +28,7 @@ SolverSettings solver_settings(const Options& options) {
   settings.max_iterations = settings.certified
                                 ? std::min(options.max_iterations, options.exact_stage_iterations)
                                 : options.max_iterations;
-  if (options.mode == Mode::exact) settings.refined_toi_width = kExactToiWidth;
+  if (decider == Decider::exact) settings.refined_toi_width = kExactToiWidth;
   settings.tmax = options.tmax;
   return settings;
 }
@@ -39,17 +40,17 @@ constexpr double kLargerThanEveryDistance = 8;
 // A query with a minimum separation (docs/design.md §11): no cubic and no exact
 // stage; the search settles it or reports a hit it could not rule out.
 void evaluate_within_distance(const ScaledQuery& scaled, Kind kind, const Options& options,
-                              Evaluation& evaluation) {
+                              Decider decider, Evaluation& evaluation) {
   const double separation = to_scaled_length(scaled, options.min_distance);
   if (separation >= kLargerThanEveryDistance) {
     evaluation.result = {true, 0.0, Status::ok};
     return;
   }
-  SolverSettings settings = solver_settings(options);
+  SolverSettings settings = solver_settings(options, decider);
   settings.min_distance = separation;
   // No exact stage to hand over to: the whole budget.
   settings.max_iterations = options.max_iterations;
-  const bool exact = options.mode == Mode::exact;
+  const bool exact = decider == Decider::exact;
   if (exact) {  // the band it may report: 2^-40 of the query's size; the TOI to 2^-40
     settings.tolerance = kExactToiWidth;
     settings.toi_tolerance = kExactToiWidth;
@@ -66,15 +67,17 @@ void settle_exactly(Kind kind, const Query& query, const Options& options, Evalu
   evaluation.result = outcome.hit ? QueryResult{true, outcome.toi, Status::ok} : QueryResult{};
 }
 
-Evaluation evaluate(Kind kind, const Query& query, const Options& options, bool filtered) {
+Evaluation evaluate(Kind kind, const Query& query, const Options& options, const lab::Settings& lab,
+                    bool filtered) {
   Evaluation evaluation;
-  if (options.mode == Mode::cubic) {  // the baseline as it is, without the scaled frame
+  const Decider decider = decider_of(options, lab);
+  if (decider == Decider::cubic) {  // the baseline as it is, without the scaled frame
     evaluation.result = all_finite(query) ? solve_cubic(kind, query)
                                           : QueryResult{true, 0.0, Status::invalid_input};
     if (evaluation.result.toi > options.tmax) evaluation.result = {};
     return evaluation;
   }
-  if (!filtered && run_filters(kind, query, filter_settings(options)).culled()) {
+  if (!filtered && run_filters(kind, query, filter_settings(options, lab)).culled()) {
     evaluation.culled = true;
     return evaluation;
   }
@@ -83,11 +86,11 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, bool 
     evaluation.result = {true, 0.0, Status::invalid_input};
     return evaluation;
   }
-  const bool exact = options.mode == Mode::exact;
+  const bool exact = decider == Decider::exact;
   if (options.min_distance > 0) {
     // Coincident points are within any separation: a hit at 0.
     if (scaled.coincident) evaluation.result = {true, 0.0, Status::ok};
-    else evaluate_within_distance(scaled, kind, options, evaluation);
+    else evaluate_within_distance(scaled, kind, options, decider, evaluation);
     return evaluation;
   }
   if (scaled.coincident) {  // all four points are one point throughout
@@ -100,7 +103,7 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, bool 
     }
     return evaluation;
   }
-  SolverOutcome outcome = solve_inclusion(kind, scaled, solver_settings(options));
+  SolverOutcome outcome = solve_inclusion(kind, scaled, solver_settings(options, decider));
   // A certain contact whose interval straddles tmax may come after it:
   // not certain of what counts.
   if (outcome.certain && outcome.hit && outcome.toi_upper > options.tmax) outcome.certain = false;
@@ -108,7 +111,7 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, bool 
   // contact within tolerance, which its promise allows; the others (out of
   // iterations, or undecidable at the smallest boxes) would be guesses.
   // Exact arithmetic settles them (docs/design.md §7).
-  const bool conservative = options.mode == Mode::conservative;
+  const bool conservative = decider == Decider::conservative;
   if (!outcome.certain && (exact || (conservative && !outcome.within_tolerance))) {
     settle_exactly(kind, query, options, evaluation);
     return evaluation;
@@ -136,10 +139,11 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, bool 
 
 }  // namespace
 
-Evaluation evaluate_query(Kind kind, const Query& query, const Options& options, bool filtered) {
-  if (!options.time_queries) return evaluate(kind, query, options, filtered);
+Evaluation evaluate_query(Kind kind, const Query& query, const Options& options, const lab::Settings& lab,
+                          bool filtered) {
+  if (!options.time_queries) return evaluate(kind, query, options, lab, filtered);
   const auto start = std::chrono::steady_clock::now();
-  Evaluation evaluation = evaluate(kind, query, options, filtered);
+  Evaluation evaluation = evaluate(kind, query, options, lab, filtered);
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
   evaluation.seconds = elapsed.count();
   return evaluation;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "batchccd/batch.hpp"
+#include "batchccd/lab.hpp"
 #include "batchccd/options.hpp"
 #include "batchccd/query.hpp"
 
@@ -26,10 +27,11 @@ struct Evaluation {
 // The whole scalar reference path for one query (docs/design.md §3-7): scale,
 // filter, solve, and in exact mode settle what stays uncertain exactly. The
 // SIMD path must agree with it decision for decision.
+// `lab`: a baseline in the mode's place, filters switched off (lab.hpp).
 // filtered: the lane filters already kept this query (a batch survivor), so
 // they are not run again.
 Evaluation evaluate_query(Kind kind, const Query& query, const Options& options,
-                          bool filtered = false);
+                          const lab::Settings& lab, bool filtered = false);
 
 // Adds what the batch counters take from an evaluation beyond hits, culls
 // and the like: exact escalations and the slowest query's time.
