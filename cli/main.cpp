@@ -68,7 +68,11 @@ min_distance, tmax, isa (the one used), threads, queries, hits, positives,
 false_positives, false_negatives (null without truth), culled, seconds (narrow
 phase alone, reading excluded), queries_per_second, exact_escalations (queries
 whose decision or TOI needed exact arithmetic), max_query_seconds (wall-clock
-time of the slowest single query).
+time of the slowest single query, with --time-queries; null without).
+
+--repeat N: each input's narrow phase N times into one result, as a frame loop
+runs it; seconds is the best of the N (reading, first touch and allocation
+out).
 
 --out FILE: one "hit,toi" line a query (hit 0/1, toi "inf" without a hit) in
 input order, all inputs in the order run, a scene's vf candidates, then its ee,
@@ -82,7 +86,9 @@ struct RunCommand {
   std::vector<std::string> inputs;
   std::string kind, truth, mode = "conservative", isa = "auto", out;
   int threads = 0;
+  int repeat = 1;
   bool json = false;
+  bool time_queries = false;
   double min_distance = 0;
   double tmax = 1;
 };
@@ -153,6 +159,10 @@ void add_run_command(CLI::App& app, RunCommand& command) {
       ->check(positive_integer);
   run->add_option("--isa", command.isa, "instruction set (auto: the best available)")
       ->check(CLI::IsMember(names_of(batchccd::isa_names())));
+  run->add_option("--repeat", command.repeat, "calls per input into one result; the best time (default 1)")
+      ->check(positive_integer);
+  run->add_flag("--time-queries", command.time_queries, "time every query for max_query_seconds")
+      ->disable_flag_override();
   run->add_flag("--json", command.json, "one JSON object per input and kind on stdout")
       ->disable_flag_override();
   run->add_option("--out", command.out, "per-query results file (below)");
@@ -182,6 +192,8 @@ int run_command(const RunCommand& command) {
   settings.options.min_distance = command.min_distance;
   settings.options.tmax = command.tmax;
   settings.keep_results = !command.out.empty();
+  settings.repeat = command.repeat;
+  settings.time_queries = command.time_queries;
   try {
     // Refused once here rather than once per input.
     batchccd::resolve_isa(settings.options.isa);

@@ -34,7 +34,8 @@ nlohmann::ordered_json json_object(const InputReport& report) {
   object["seconds"] = report.seconds;
   object["queries_per_second"] = report.queries_per_second();
   object["exact_escalations"] = report.exact_escalations;
-  object["max_query_seconds"] = report.max_query_seconds;
+  object["max_query_seconds"] =
+      report.max_query_seconds ? nlohmann::ordered_json(*report.max_query_seconds) : nlohmann::ordered_json();
   return object;
 }
 
@@ -71,7 +72,7 @@ Row table_row(const InputReport& report) {
           fixed(report.seconds, 6),
           fixed(report.queries_per_second(), 0),
           std::to_string(report.exact_escalations),
-          fixed(report.max_query_seconds, 6)};
+          report.max_query_seconds ? fixed(*report.max_query_seconds, 6) : "-"};
 }
 
 // A truth column's total is shown only when every row has it.
@@ -93,7 +94,8 @@ Row totals_row(const std::vector<InputReport>& reports) {
     total.culled += report.culled;
     total.seconds += report.seconds;
     total.exact_escalations += report.exact_escalations;
-    total.max_query_seconds = std::max(total.max_query_seconds, report.max_query_seconds);
+    if (report.max_query_seconds)
+      total.max_query_seconds = std::max(total.max_query_seconds.value_or(0), *report.max_query_seconds);
   }
   total.positives = total_of(reports, &InputReport::positives);
   total.false_positives = total_of(reports, &InputReport::false_positives);

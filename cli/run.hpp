@@ -27,6 +27,13 @@ struct RunSettings {
   Options options;
   // Keep every query's result in InputReport::results (--out needs them).
   bool keep_results = false;
+  // --repeat: each input's call made this many times into the same result,
+  // its best time reported (first touch and allocation out, as in a
+  // simulator's frame loop).
+  int repeat = 1;
+  // --time-queries: time every query for InputReport::max_query_seconds
+  // (two clock reads a query the scalar path evaluates).
+  bool time_queries = false;
 };
 
 // The outcome of one input and one kind (a scene gives two to four).
@@ -45,12 +52,13 @@ struct InputReport {
   std::optional<std::int64_t> positives;
   std::optional<std::int64_t> false_positives;
   std::optional<std::int64_t> false_negatives;
-  double seconds = 0;  // the narrow-phase call alone, reading excluded
+  double seconds = 0;  // the narrow-phase call alone, reading excluded; the best of --repeat
   // Exact and conservative modes: queries whose decision (or TOI) exact
   // arithmetic settled (0 in the other modes).
   std::int64_t exact_escalations = 0;
-  // Wall-clock time of the call's slowest single query (0 without queries).
-  double max_query_seconds = 0;
+  // Wall-clock time of the call's slowest single query (0 without queries),
+  // with --time-queries.
+  std::optional<double> max_query_seconds;
   // One per query in input order (a scene: one kind's candidates), filled
   // when RunSettings::keep_results is set or the input has ground truth.
   std::vector<QueryResult> results;

@@ -188,7 +188,7 @@ TEST_F(CliTest, HelpDocumentsEveryOption) {
     EXPECT_NE(general.out.find(command), std::string::npos) << command;
   const CliRun run = run_cli({"run", "--help"});
   EXPECT_EQ(run.exit_code, 0);
-  for (const char* option : {"--kind", "--truth", "--mode", "--threads", "--isa", "--json",
+  for (const char* option : {"--kind", "--truth", "--mode", "--threads", "--isa", "--json", "--repeat", "--time-queries",
                              "--out", "conservative", "exact", "avx512",
                              "INPUT", "exact_escalations", "max_query_seconds", "Exit status",
                              "--min-distance", "--tmax", "min_distance", "tmax", "point-edge",
@@ -484,7 +484,9 @@ TEST_F(CliTest, JsonHasEveryFieldAndCountsAgainstTruth) {
 TEST_F(CliTest, JsonCountsExactEscalationsAndTheSlowestQueryInEveryMode) {
   write_file(path("vertex-face/q.csv"), vertex_face_hit_and_miss);
   for (const char* mode : {"conservative", "exact"}) {
-    const auto objects = run_json({"--mode", mode, "vertex-face/q.csv"});
+    // Untimed queries: no slowest one.
+    EXPECT_EQ(run_json({"--mode", mode, "vertex-face/q.csv"}).front().at("max_query_seconds"), "null");
+    const auto objects = run_json({"--mode", mode, "--time-queries", "vertex-face/q.csv"});
     ASSERT_EQ(objects.size(), 1u) << mode;
     const auto& object = objects.front();
     EXPECT_EQ(object.at("mode"), mode);
@@ -496,6 +498,24 @@ TEST_F(CliTest, JsonCountsExactEscalationsAndTheSlowestQueryInEveryMode) {
     // Exact arithmetic here at most for the hit's TOI.
     EXPECT_LE(std::stoi(object.at("exact_escalations")), 1) << mode;
   }
+}
+
+// --repeat runs the same call into one result: the same answers and
+// counts as one call, the best time of the repeats.
+TEST_F(CliTest, RepeatGivesTheSameAnswersAndItsBestTime) {
+  write_file(path("vertex-face/q.csv"), vertex_face_hit_and_miss);
+  const auto once = run_json({"vertex-face/q.csv"});
+  const auto repeated = run_json({"--repeat", "5", "vertex-face/q.csv"});
+  ASSERT_EQ(once.size(), 1u);
+  ASSERT_EQ(repeated.size(), 1u);
+  for (const char* field : {"queries", "hits", "false_positives", "false_negatives", "culled", "exact_escalations"})
+    EXPECT_EQ(repeated[0].at(field), once[0].at(field)) << field;
+  EXPECT_GE(std::stod(repeated[0].at("seconds")), 0.0);
+  EXPECT_EQ(run_cli({"run", "--repeat", "3", "--out", "results.csv", "vertex-face/q.csv"}).exit_code, 0);
+  EXPECT_EQ(lines_of(read_file(path("results.csv"))).size(), 2u);
+  const CliRun zero = run_cli({"run", "--repeat", "0", "vertex-face/q.csv"});
+  EXPECT_EQ(zero.exit_code, 2);
+  EXPECT_NE(zero.err.find("--repeat"), std::string::npos) << zero.err;
 }
 
 TEST_F(CliTest, TruthFieldsAreNullWithoutTruthAndFilledByTruthFile) {
