@@ -89,34 +89,40 @@ ExactOutcome solve_exactly(Kind kind, const Query& query, bool need_toi, double 
     triangles.emplace_back(triangle);
 
   const Polynomial critical = critical_union(triangles);
-  std::optional<std::vector<IsolatedRoot>> interior = isolate_roots(critical);
-  if (!interior) return {true, 0.0, true};
-  // Candidate times in increasing order: the first one in contact is the TOI.
-  std::vector<IsolatedRoot> candidates;
-  candidates.push_back(exact_time(0));
-  for (IsolatedRoot& root : *interior) candidates.push_back(std::move(root));
-  candidates.push_back(exact_time(1));
-
   SignsAtRoots signs(critical);
   const IsolatedRoot limit = as_dyadic(tmax);
-  for (IsolatedRoot& time : candidates) {
-    if (lies_after(time, limit, critical)) break;
+  // Candidate times in increasing order: 0, the critical polynomial's roots
+  // as they are isolated, 1. The first one in contact is the TOI; past it,
+  // or past tmax, nothing more is isolated.
+  std::optional<ExactOutcome> outcome;
+  const auto decide = [&](IsolatedRoot& time) {
+    if (lies_after(time, limit, critical)) {
+      outcome = ExactOutcome{};
+      return true;
+    }
     const SignAtTime sign = [&](const Polynomial& p) { return signs(p, time); };
-    bool contact = false;
     for (const TriangleConditions& triangle : triangles) {
       const std::optional<bool> inside = contains_origin(triangle, sign);
-      if (!inside) return {true, 0.0, true};
+      if (!inside) {
+        outcome = ExactOutcome{true, 0.0, true};
+        return true;
+      }
       if (*inside) {
-        contact = true;
-        break;
+        // Refine the root to the asked width: each halving keeps it inside.
+        while (need_toi && !time.exact && time.exponent < kToiBits) halve(time, critical);
+        outcome = ExactOutcome{true, lower_bound(time), false};
+        return true;
       }
     }
-    if (!contact) continue;
-    // Refine the root to the asked width: each halving keeps it inside.
-    while (need_toi && !time.exact && time.exponent < kToiBits) halve(time, critical);
-    return {true, lower_bound(time), false};
-  }
-  return {};
+    return false;
+  };
+  IsolatedRoot start = exact_time(0);
+  if (decide(start)) return *outcome;
+  if (visit_roots(critical, decide) == RootVisit::bound_reached) return {true, 0.0, true};
+  if (outcome) return *outcome;
+  IsolatedRoot end = exact_time(1);
+  decide(end);
+  return outcome.value_or(ExactOutcome{});
 }
 
 }  // namespace batchccd::exact

@@ -76,11 +76,11 @@ std::optional<std::vector<IsolatedRoot>> isolate_roots(const Polynomial& square_
   return isolate_roots(square_free, Integer(0), 0);
 }
 
-std::optional<std::vector<IsolatedRoot>> isolate_roots(const Polynomial& square_free,
-                                                       const Integer& numerator,
-                                                       unsigned long exponent) {
-  std::vector<IsolatedRoot> roots;
-  if (square_free.degree() < 1) return roots;
+namespace {
+
+RootVisit visit_roots_in(const Polynomial& square_free, const Integer& numerator, unsigned long exponent,
+                         const std::function<bool(IsolatedRoot&)>& visit) {
+  if (square_free.degree() < 1) return RootVisit::finished;
   // Below this width an interval holds at most one root and its count says
   // so (one- and two-circle theorems): a deeper node cannot occur.
   const unsigned long depth_limit =
@@ -91,16 +91,18 @@ std::optional<std::vector<IsolatedRoot>> isolate_roots(const Polynomial& square_
     Node node = std::move(stack.back());
     stack.pop_back();
     if (node.exact_root) {
-      roots.push_back({std::move(node.numerator), node.exponent, true, 0});
+      IsolatedRoot root{std::move(node.numerator), node.exponent, true, 0};
+      if (visit(root)) return RootVisit::stopped;
       continue;
     }
     const DescartesCount count = descartes_count(node.local);
     if (count.variations == 0) continue;
     if (count.variations == 1) {
-      roots.push_back({std::move(node.numerator), node.exponent, false, count.sign_after_low});
+      IsolatedRoot root{std::move(node.numerator), node.exponent, false, count.sign_after_low};
+      if (visit(root)) return RootVisit::stopped;
       continue;
     }
-    if (node.exponent >= depth_limit) return std::nullopt;
+    if (node.exponent >= depth_limit) return RootVisit::bound_reached;
     Polynomial left = left_half(node.local);
     Polynomial right = left;
     taylor_shift(right, Integer(1));
@@ -111,6 +113,24 @@ std::optional<std::vector<IsolatedRoot>> isolate_roots(const Polynomial& square_
     if (middle_is_root) stack.push_back({Polynomial{}, middle, node.exponent + 1, true});
     stack.push_back({std::move(left), shifted_left(node.numerator, 1), node.exponent + 1, false});
   }
+  return RootVisit::finished;
+}
+
+}  // namespace
+
+RootVisit visit_roots(const Polynomial& square_free, const std::function<bool(IsolatedRoot&)>& visit) {
+  return visit_roots_in(square_free, Integer(0), 0, visit);
+}
+
+std::optional<std::vector<IsolatedRoot>> isolate_roots(const Polynomial& square_free,
+                                                       const Integer& numerator,
+                                                       unsigned long exponent) {
+  std::vector<IsolatedRoot> roots;
+  const auto collect = [&](IsolatedRoot& root) {
+    roots.push_back(std::move(root));
+    return false;
+  };
+  if (visit_roots_in(square_free, numerator, exponent, collect) == RootVisit::bound_reached) return std::nullopt;
   return roots;
 }
 

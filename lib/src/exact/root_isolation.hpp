@@ -46,6 +46,12 @@ unsigned long separation_bits(int degree, double log2_mahler);
 // dyadic interval (numerator / 2^exponent, (numerator + 1) / 2^exponent),
 // in increasing order.
 std::optional<std::vector<IsolatedRoot>> isolate_roots(const Polynomial& square_free);
+
+// The same roots of (0, 1) handed to `visit` one at a time in increasing
+// order as they are isolated, until it returns true (stopped): a caller
+// after the first root with some property isolates no later ones.
+enum class RootVisit { finished, stopped, bound_reached };
+RootVisit visit_roots(const Polynomial& square_free, const std::function<bool(IsolatedRoot&)>& visit);
 std::optional<std::vector<IsolatedRoot>> isolate_roots(const Polynomial& square_free,
                                                        const Integer& numerator,
                                                        unsigned long exponent);

@@ -1,0 +1,104 @@
+// The slowest single queries of each mode over the stiff and extreme suite
+// and ../shared/data (sample queries and the scenes' candidate lists), each
+// query timed alone through query_ccd (filters, solver, exact stage) as the
+// best of three runs on one thread. Prints the five slowest per mode with
+// where they come from, and how many take longer than 0.5 ms. Asserts
+// nothing. Usage: batchccd_slowest_queries [shared-data-dir]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "batchccd/batchccd.hpp"
+#include "extreme_suite.hpp"
+
+namespace {
+
+using namespace batchccd;
+namespace fs = std::filesystem;
+
+struct Input {
+  std::string name;
+  Kind kind;
+  std::vector<Query> queries;
+};
+
+struct Timing {
+  double seconds;
+  const Input* input;
+  std::size_t index;
+  bool hit;
+};
+
+double best_of_three(Kind kind, const Query& query, const Options& options, QueryResult& result) {
+  double best = 1e300;
+  for (int run = 0; run < 3; ++run) {
+    const auto start = std::chrono::steady_clock::now();
+    result = query_ccd(kind, query, options);
+    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  return best;
+}
+
+std::vector<Input> inputs(const fs::path& data) {
+  std::vector<Input> all;
+  for (scenes::ExtremeCategory& category : scenes::extreme_categories())
+    all.push_back({"extreme: " + category.name, category.kind, std::move(category.queries)});
+  std::vector<fs::path> files, scene_directories;
+  if (fs::is_directory(data / "sample-queries"))
+    for (const auto& entry : fs::recursive_directory_iterator(data / "sample-queries"))
+      if (entry.path().extension() == ".csv" && kind_from_path(entry.path())) files.push_back(entry.path());
+  if (fs::is_directory(data / "scenes"))
+    for (const auto& entry : fs::directory_iterator(data / "scenes"))
+      if (is_scene_directory(entry.path())) scene_directories.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  std::sort(scene_directories.begin(), scene_directories.end());
+  for (const fs::path& file : files) {
+    const Kind kind = *kind_from_path(file);
+    all.push_back({fs::relative(file, data).string(), kind, read_query_csv(file, kind).queries});
+  }
+  for (const fs::path& directory : scene_directories) {
+    const Scene scene = read_scene(directory);
+    const MeshView mesh{scene.positions_t0, scene.positions_t1, scene.faces};
+    Input vertex_face{fs::relative(directory, data).string(), Kind::vertex_face, {}};
+    Input edge_edge{vertex_face.name, Kind::edge_edge, {}};
+    for (const auto& candidate : scene.candidates.vertex_face)
+      vertex_face.queries.push_back(vertex_face_query(mesh, candidate));
+    for (const auto& candidate : scene.candidates.edge_edge)
+      edge_edge.queries.push_back(edge_edge_query(mesh, candidate));
+    all.push_back(std::move(vertex_face));
+    all.push_back(std::move(edge_edge));
+  }
+  return all;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const fs::path data = argc > 1 ? fs::path(argv[1]) : fs::path(BATCHCCD_SHARED_DATA);
+  const std::vector<Input> all = inputs(data);
+  std::size_t count = 0;
+  for (const Input& input : all) count += input.queries.size();
+  std::printf("%zu queries (stiff and extreme suite, %s), each the best of 3 runs, one thread\n", count,
+              data.string().c_str());
+  for (const Mode mode : {Mode::conservative, Mode::exact}) {
+    std::vector<Timing> timings;
+    double total = 0;
+    for (const Input& input : all)
+      for (std::size_t i = 0; i < input.queries.size(); ++i) {
+        QueryResult result;
+        const double seconds = best_of_three(input.kind, input.queries[i], {.mode = mode}, result);
+        total += seconds;
+        timings.push_back({seconds, &input, i, result.hit});
+      }
+    std::sort(timings.begin(), timings.end(), [](const Timing& a, const Timing& b) { return a.seconds > b.seconds; });
+    const auto slow = std::count_if(timings.begin(), timings.end(), [](const Timing& t) { return t.seconds > 0.5e-3; });
+    std::printf("\n%s: mean %.2f us, over 0.5 ms: %td; slowest:\n", to_string(mode), total / static_cast<double>(count) * 1e6, slow);
+    for (std::size_t k = 0; k < std::min<std::size_t>(5, timings.size()); ++k)
+      std::printf("  %9.1f us  %-5s %s %s #%zu\n", timings[k].seconds * 1e6, timings[k].hit ? "hit" : "miss",
+                  timings[k].input->name.c_str(), to_string(timings[k].input->kind), timings[k].index);
+  }
+  return 0;
+}
