@@ -119,11 +119,12 @@ class InclusionSolver {
         // The cubic's signs alone narrow a wide interval to its first root,
         // far cheaper than any proof or search over all of it. What they
         // drop before it is root-free, so contact-free; what follows it
-        // waits its turn.
-        const Interval first = narrow_to_first_root(time, kWideInterval);
-        if (first.width() < time.width()) {
-          push(heap, first);
-          if (first.high < time.high) push(heap, Interval{first.high, time.high});
+        // waits its turn, unless the halves it was cut from were root-free.
+        const Narrowed narrowed = narrow_to_first_root(time, kWideInterval, cubic.halved);
+        if (narrowed.first.width() < time.width()) {
+          push(heap, narrowed.first);
+          if (!narrowed.rest_root_free && narrowed.first.high < time.high)
+            push(heap, Interval{narrowed.first.high, time.high});
           continue;
         }
       }
@@ -154,7 +155,7 @@ class InclusionSolver {
         // to call first.
         // Located also when it may lie after tmax, to tell whether it counts.
         const bool locate = settings_.need_toi || time.high > settings_.tmax;
-        if (locate) time = narrow_to_first_root(time, settings_.toi_tolerance);
+        if (locate) time = narrow_to_first_root(time, settings_.toi_tolerance, cubic.halved).first;
         if (time.width() <= settings_.toi_tolerance || !locate) return certain_contact(time);
         // Certified: the signs got too close to call first (a multiple
         // root, slow relative motion). The first contact is still the
@@ -349,37 +350,8 @@ class InclusionSolver {
   // excluded): refined to refined_toi_width when asked.
   SolverOutcome certain_contact(Interval time) const {
     if (settings_.certified && settings_.need_toi && settings_.refined_toi_width > 0)
-      time = narrow_to_first_root(time, settings_.refined_toi_width);
+      time = narrow_to_first_root(time, settings_.refined_toi_width, halved_cubic(endpoints(time))).first;
     return {true, time.low, false, settings_.certified, time.high};
-  }
-
-  // Narrows an interval with a certain root towards the cubic's first root
-  // by halving on the cubic's signs alone: a root-free left half sends it
-  // right, a certain sign change left, until `width` or a sign too close to
-  // call. What it drops on the left is root-free; on the right, whatever
-  // follows the returned interval.
-  // The halves come from de Casteljau's averages of the interval's
-  // coefficients rather than from positions interpolated anew: a fraction
-  // of the work, for an error bound that grows by 4 u of the largest
-  // coefficient a halving; once it has doubled, the coefficients are
-  // computed afresh.
-  Interval narrow_to_first_root(Interval time, double width) const {
-    HalvedCubic cubic = halved_cubic(endpoints(time));
-    const double fresh_error = cubic.error;
-    while (time.width() > width) {
-      if (cubic.error > 2 * fresh_error) cubic = halved_cubic(endpoints(time));
-      const auto [left, right] = cubic.halves();
-      if (left.root_free()) {
-        time.low = time.middle();
-        cubic = right;
-      } else if (left.certain_root()) {
-        time.high = time.middle();
-        cubic = left;
-      } else {
-        break;
-      }
-    }
-    return time;
   }
 
   // The cubic's Bernstein coefficients over an interval, each within
@@ -410,11 +382,51 @@ class InclusionSolver {
     }
   };
 
-  HalvedCubic halved_cubic(const Endpoints& e) const {
+  // Narrows an interval with a certain root towards the cubic's first root
+  // by halving on the cubic's signs alone: a root-free left half sends it
+  // right, a certain sign change left, until `width` or a sign too close to
+  // call. What it drops on the left is root-free; on the right, whatever
+  // follows the returned interval.
+  // The halves come from de Casteljau's averages of the interval's
+  // coefficients rather than from positions interpolated anew: a fraction
+  // of the work, for an error bound that grows by 4 u of the largest
+  // coefficient a halving; once it has doubled, the coefficients are
+  // computed afresh.
+  // `cubic`: its coefficients over `time`.
+  struct Narrowed {
+    Interval first;
+    bool rest_root_free;  // no root in the rest of the interval, after `first`
+  };
+  Narrowed narrow_to_first_root(Interval time, double width, HalvedCubic cubic) const {
+    const double fresh_error = cubic.error;
+    bool rest_root_free = true;
+    while (time.width() > width) {
+      if (cubic.error > 2 * fresh_error) cubic = halved_cubic(endpoints(time));
+      const auto [left, right] = cubic.halves();
+      if (left.root_free()) {
+        time.low = time.middle();
+        cubic = right;
+      } else if (left.certain_root()) {
+        rest_root_free = rest_root_free && right.root_free();
+        time.high = time.middle();
+        cubic = left;
+      } else {
+        break;
+      }
+    }
+    return {time, rest_root_free};
+  }
+
+
+  HalvedCubic halved_cubic(const Endpoints& e) const { return halved_cubic(bernstein_over(e)); }
+  BernsteinCubic<double> bernstein_over(const Endpoints& e) const {
     const auto& p = e.position;
     const auto& m = e.magnitude;
     BernsteinCubic<double> cubic = bernstein_cubic(p[0][0], p[1][0], p[0][1], p[1][1], p[0][2], p[1][2]);
     bernstein_magnitudes(cubic, m[0][0], m[1][0], m[0][1], m[1][1], m[0][2], m[1][2]);
+    return cubic;
+  }
+  HalvedCubic halved_cubic(const BernsteinCubic<double>& cubic) const {
     // bernstein_cubic leaves out the binomial weights (1, 3, 3, 1): dividing
     // them out rounds by u at most.
     const double* c = cubic.coefficient;
@@ -466,14 +478,12 @@ class InclusionSolver {
   struct CubicSigns {
     bool root_free;     // certainly no root in the interval
     bool certain_root;  // certainly opposite signs at its ends
+    HalvedCubic halved;  // the coefficients, for narrow_to_first_root
   };
 
   // Root isolation on the coplanarity cubic over the interval.
   CubicSigns cubic_signs(const Endpoints& e) const {
-    const auto& p = e.position;
-    const auto& m = e.magnitude;
-    BernsteinCubic<double> cubic = bernstein_cubic(p[0][0], p[1][0], p[0][1], p[1][1], p[0][2], p[1][2]);
-    bernstein_magnitudes(cubic, m[0][0], m[1][0], m[0][1], m[1][1], m[0][2], m[1][2]);
+    const BernsteinCubic<double> cubic = bernstein_over(e);
     const ErrorModel& error = cubic_error_;
     auto sign = [&](int k) {  // -1, 0 (uncertain) or +1
       const double bound = error.relative * cubic.magnitude[k] + error.floor;
@@ -481,7 +491,7 @@ class InclusionSolver {
     };
     return {static_cast<bool>(certainly_root_free(cubic.coefficient, cubic.magnitude,
                                                   error.relative, error.floor)),
-            sign(0) * sign(3) < 0};
+            sign(0) * sign(3) < 0, halved_cubic(cubic)};
   }
 
   // Each position component as a ball holding all its values over the
