@@ -1,6 +1,8 @@
 """The same answers as the C++ tool on the shared scenes (skipped without them)."""
 import math
+import pathlib
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -45,3 +47,16 @@ def test_shared_scenes_match_the_tool_bit_for_bit(shared_data, cli, mode, tmp_pa
         checked += 1
     assert checked > 0
     assert math.isfinite(result.earliest_toi) or result.counters["hits"] == 0
+
+
+def test_error_vs_time_example_prints_every_mode(shared_data, tmp_path):
+    scene = shared_data / "scenes" / "cloth-funnel-227"
+    if not scene.is_dir():
+        pytest.skip("no cloth-funnel-227")
+    example = pathlib.Path(__file__).resolve().parents[1] / "examples" / "error_vs_time.py"
+    out = subprocess.run([sys.executable, str(example), str(scene), "--repeat", "1", "--plot", str(tmp_path / "p.png")],
+                         check=True, capture_output=True, text=True).stdout
+    rows = {line.split()[0]: line.split() for line in out.splitlines()[2:] if line.split()[0] in batchccd.modes()}
+    assert set(rows) == set(batchccd.modes())
+    for mode in MODES:
+        assert rows[mode][2:4] == ["0", "0"], out  # no wrong decision in the certified modes
