@@ -12,6 +12,7 @@
 // for bit (and has contacts, so that the comparison means something). Every mode of the library is run in turn.
 //
 //   mpirun -np 2 build/mpi/batchccd_mpi_step [--check] [--resolution N]
+// (on one machine without an ssh client: OMPI_MCA_plm=isolated mpirun ...)
 #include <mpi.h>
 
 #include <algorithm>

@@ -2,6 +2,7 @@
 coordinates follow the C++ contract (status invalid, no exception)."""
 import math
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -152,3 +153,28 @@ def test_several_python_threads_at_once_get_the_same_answers(scene):
         reference = expected if mode == "conservative" else exact
         assert np.array_equal(toi, reference.toi) and np.array_equal(hit, reference.hit)
         assert np.array_equal(batch_toi, expected_batch.toi)
+
+
+def test_the_gil_is_released_during_a_call():
+    # Edges that meet exactly at their midpoints: each query goes to exact
+    # arithmetic, so 2,000 of them keep one thread in the library a while.
+    query = batchccd.make_query("ee", [[-1, 0, 0], [1, 0, 0], [0, -1, 1], [0, 1, 1]],
+                                [[-1, 0, 0], [1, 0, 0], [0, -1, -1], [0, 1, -1]])
+    queries = np.repeat(query[None], 2000, axis=0)
+    window, ticks = [], []
+
+    def call():
+        window.append(time.perf_counter())
+        batchccd.batch_ccd("ee", queries, mode="exact", threads=1)
+        window.append(time.perf_counter())
+
+    worker = threading.Thread(target=call)
+    worker.start()
+    while worker.is_alive():
+        ticks.append(time.perf_counter())  # Python code, runnable only without the GIL held
+        time.sleep(0.001)
+    worker.join()
+    start, end = window
+    middle = (start + (end - start) / 3, end - (end - start) / 3)
+    # Holding the GIL, the call would leave this thread no tick in its middle third.
+    assert any(middle[0] < t < middle[1] for t in ticks)
