@@ -206,8 +206,7 @@ py::array int32_array(py::handle object, const char* name, bool need_c_contiguou
   if (in_place) return array;
   if (array.itemsize() <= 2 || (kind == 'i' && array.itemsize() == 4))
     return copy_as<int>(array);  // every value fits
-  // Wider types: check the range before narrowing, naming the first value that does not fit.
-  py::module_ numpy = py::module_::import("numpy");
+  // Wider types: check the range before narrowing, naming the extreme value that does not fit.
   if (array.size() > 0) {
     const py::object low = array.attr("min")(), high = array.attr("max")();
     const auto too_big = [](py::handle v) { return v.cast<py::int_>() > py::int_(std::numeric_limits<int>::max()); };
@@ -285,10 +284,15 @@ std::span<const Query> query_span(py::handle object, const char* name, py::array
   return {static_cast<const Query*>(array.data()), static_cast<std::size_t>(array.shape(0))};
 }
 
+// One query, 8 x 3 (or 24) coordinates; integers are taken as the doubles they are.
 Query one_query(py::handle object, const char* name) {
+  py::array array = ensure_array(object, name);
+  if (array.size() != 24)
+    throw py::value_error(std::string(name) + ": expected 8 x 3 coordinates, got " + std::to_string(array.size()));
+  const char kind = array.dtype().kind();
+  if (kind == 'i' || kind == 'u') array = copy_as<double>(array);
   py::array keep;
-  const std::span<const Query> queries = query_span(py::module_::import("numpy").attr("asarray")(object).attr("reshape")(1, 24), name, keep);
-  return queries[0];
+  return query_span(array.attr("reshape")(1, 24), name, keep)[0];
 }
 
 Vec3 point(py::handle object, const char* name) {

@@ -138,3 +138,19 @@ def test_out_reuses_storage_but_never_under_a_live_view(scene):
     del toi
     third = batchccd.mesh_ccd(x0, x1, faces, **lists, out=first)
     assert np.array_equal(third.toi, kept)
+
+
+def test_no_candidates_and_an_empty_mesh():
+    empty = batchccd.mesh_ccd(np.zeros((0, 3)), np.zeros((0, 3)))
+    assert empty.earliest_toi == float("inf") and empty.counters["candidates"] == 0
+    assert len(empty.hit) == 0 and empty.toi.dtype == np.float64 and empty.status.dtype == np.int32
+    none = batchccd.batch_ccd("vf", np.zeros((0, 8, 3)), hit_list=True)
+    assert len(none.hit_candidates) == 0 and none.earliest_toi == float("inf")
+
+
+def test_one_query_calls_take_integer_coordinates_and_check_their_size():
+    query = [[0, 0, 1], [0, 0, 1], [0, 0, 0], [0, 0, 0], [0, 0, -1], [0, 0, -1], [0, 0, 0], [0, 0, 0]]
+    assert batchccd.query_ccd("vv", query).hit
+    assert batchccd.squared_distance("vv", query) == 1.0
+    with pytest.raises(ValueError, match="query: expected 8 x 3 coordinates, got 21"):
+        batchccd.query_ccd("vv", np.zeros((7, 3)))
