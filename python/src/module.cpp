@@ -4,10 +4,8 @@
 // the GIL is released while the library works.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
-#include <pybind11/stl.h>
 
 #include <array>
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -16,7 +14,6 @@
 #include <optional>
 #include <span>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include <batchccd/batchccd.hpp>
@@ -195,8 +192,9 @@ PositionsView positions_view(py::handle object, const char* name, py::array& kee
   return MatrixView<double>(static_cast<const double*>(array.data()), array.shape(0), array.shape(1), row, column);
 }
 
-// An integer array as int32: int32 itself in place (when `in_place` allows
-// its layout), any other integer dtype copied once, each value checked to fit.
+// An integer array as int32: int32 itself in place when its layout allows
+// (C order too when need_c_contiguous: a span of rows), any other integer
+// dtype copied once, each value checked to fit.
 py::array int32_array(py::handle object, const char* name, bool need_c_contiguous) {
   py::array array = ensure_array(object, name);
   const char kind = array.dtype().kind();
