@@ -154,3 +154,13 @@ def test_one_query_calls_take_integer_coordinates_and_check_their_size():
     assert batchccd.squared_distance("vv", query) == 1.0
     with pytest.raises(ValueError, match="query: expected 8 x 3 coordinates, got 21"):
         batchccd.query_ccd("vv", np.zeros((7, 3)))
+
+
+def test_counters_add_up(scene):
+    x0, x1, faces, _, lists = scene
+    c = batchccd.mesh_ccd(x0, x1, faces, **lists).counters
+    assert set(c) == {"candidates", "culled", "culled_by_sign", "culled_by_separation", "solved", "hits",
+                      "undecided", "invalid", "exact_escalations"}
+    assert all(isinstance(v, int) for v in c.values())
+    assert c["candidates"] == c["culled"] + c["solved"] and c["culled"] > 0
+    assert c["culled"] == c["culled_by_sign"] + c["culled_by_separation"]
