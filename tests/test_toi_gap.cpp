@@ -1,4 +1,4 @@
-// Issue #19 item 7, "a TOI a simulator can step to": conservative mode's TOI
+// A TOI a simulator can step to: conservative mode's TOI
 // against the first contact (exact mode's TOI, less than 2^-40 before it) on
 // adversarial queries and the stiff and extreme suite. Each case prints
 // both. What is asserted is the promise of Mode::conservative (options.hpp):
