@@ -9,15 +9,18 @@
 //
 // Counters per call: candidates/s (items_per_second), the share culled by
 // each lane filter, the survivors' share and the hits. Ratios between
-// separations are only meaningful within one run.
+// separations are only meaningful within one run. MethodOnDenseList: the
+// modes and the cubic baseline at no separation, with where the time goes.
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "batchccd/batchccd.hpp"
+#include "batchccd/lab.hpp"
 #include "broad_phase.hpp"
 
 namespace batchccd {
@@ -75,6 +78,49 @@ void MeshCcdOnDenseList(benchmark::State& state, const std::string& name, double
   state.counters["candidates"] = static_cast<double>(c.candidates);
 }
 
+// Where the time goes, per method at no separation: each mode with every
+// query timed (Options::time_queries; two clock reads a survivor, so these
+// rows run a little slower than the ones above) and the unfiltered cubic
+// baseline, in the same run so that ratios between them mean something.
+// Counters: survivors' share, the mean cost of a survivor (the scalar path,
+// exact stage included), and the shares of the call's time spent by the
+// filters (and scheduling: the rest), the scalar path and, within it, the
+// queries exact arithmetic settled.
+void MethodOnDenseList(benchmark::State& state, const std::string& name, lab::Method method) {
+  const DenseList* list = dense_list(name);
+  if (list == nullptr) {
+    state.SkipWithError("../shared/data/scenes is absent");
+    return;
+  }
+  Options options = method.applied_to({});
+  options.threads = 1;
+  options.per_candidate_results = false;
+  options.hit_list = true;
+  options.time_queries = method.baseline == lab::Baseline::none;
+  const MeshView view{list->scene.positions_t0, list->scene.positions_t1, list->scene.faces};
+  BatchResult result;
+  lab::mesh_ccd(view, list->candidates, MinDistances{}, options, method.settings(), result);
+  double seconds = 0, solved_seconds = 0, escalated_seconds = 0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    lab::mesh_ccd(view, list->candidates, MinDistances{}, options, method.settings(), result);
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    solved_seconds += result.counters.solved_seconds;
+    escalated_seconds += result.counters.escalated_seconds;
+  }
+  const Counters& c = result.counters;
+  state.SetItemsProcessed(c.candidates * state.iterations());
+  state.counters["survivors"] = static_cast<double>(c.solved) / static_cast<double>(c.candidates);
+  state.counters["hits"] = static_cast<double>(c.hits);
+  if (options.time_queries && c.solved > 0) {
+    const double solved = static_cast<double>(c.solved) * static_cast<double>(state.iterations());
+    state.counters["us_per_survivor"] = solved_seconds / solved * 1e6;
+    state.counters["filter_share"] = 1 - solved_seconds / seconds;
+    state.counters["solver_share"] = (solved_seconds - escalated_seconds) / seconds;
+    state.counters["exact_share"] = escalated_seconds / seconds;
+  }
+}
+
 const bool registered = [] {
   for (const char* name : kSceneNames)
     for (const double separation : kSeparations)
@@ -82,6 +128,12 @@ const bool registered = [] {
           ("MeshCcdOnDenseList/" + std::string(name) + "/min_distance_" + std::to_string(separation).substr(0, 5))
               .c_str(),
           MeshCcdOnDenseList, std::string(name), separation)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+  for (const char* name : kSceneNames)
+    for (const lab::Method method : {lab::kConservative, lab::kExact, lab::kCubic})
+      benchmark::RegisterBenchmark(("MethodOnDenseList/" + std::string(name) + "/" + to_string(method)).c_str(),
+                                   MethodOnDenseList, std::string(name), method)
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime();
   return true;

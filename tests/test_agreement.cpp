@@ -35,7 +35,7 @@ class NearMisses {
     Case c;
     c.gap = pick(3) == 0 ? 0.0 : std::ldexp(1.0, -static_cast<int>(4 + pick(40)));
     std::vector<Vec3> at;  // the points at t*, in make_query's order for the kind
-    Vec3 across;           // the first primitive's motion relative to the other
+    Vec3 across = Vec3::Zero();  // the first primitive's motion relative to the other
     const Vec3 base = point();
     switch (kind) {
       case Kind::vertex_face: {

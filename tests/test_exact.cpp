@@ -539,9 +539,15 @@ TEST(ExactCounters, BatchCountsEscalationsAndTimesQueriesOnlyWhenAsked) {
   EXPECT_EQ(batch.counters.hits, 1);
   EXPECT_EQ(batch.counters.exact_escalations, 1);
   EXPECT_EQ(batch.counters.max_query_seconds, 0.0);
+  EXPECT_EQ(batch.counters.solved_seconds, 0.0);
+  EXPECT_EQ(batch.counters.escalated_seconds, 0.0);
   options.time_queries = true;
   batch = batch_ccd(Kind::edge_edge, queries, options);
   EXPECT_GT(batch.counters.max_query_seconds, 0.0);
+  // Both queries are solved, one escalated: the sums bound the slowest.
+  EXPECT_GE(batch.counters.solved_seconds, batch.counters.max_query_seconds);
+  EXPECT_GT(batch.counters.escalated_seconds, 0.0);
+  EXPECT_LT(batch.counters.escalated_seconds, batch.counters.solved_seconds);
   options.mode = Mode::conservative;
   options.exact_stage_iterations = options.max_iterations;
   batch = batch_ccd(Kind::edge_edge, queries, options);

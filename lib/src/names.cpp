@@ -63,6 +63,8 @@ Counters& Counters::operator+=(const Counters& other) {
   invalid += other.invalid;
   exact_escalations += other.exact_escalations;
   max_query_seconds = std::max(max_query_seconds, other.max_query_seconds);
+  solved_seconds += other.solved_seconds;
+  escalated_seconds += other.escalated_seconds;
   return *this;
 }
 

@@ -33,6 +33,12 @@ struct Counters {
   // lane filters' culls take nanoseconds), when Options::time_queries is set;
   // 0 otherwise. Adding counters keeps the larger.
   double max_query_seconds = 0;
+  // With Options::time_queries, where a call's time goes: the seconds the
+  // scalar path spent on the queries it evaluated (the filters' survivors;
+  // summed over threads), and of those on the queries exact arithmetic
+  // settled (exact_escalations). 0 otherwise. Adding counters sums them.
+  double solved_seconds = 0;
+  double escalated_seconds = 0;
 
   Counters& operator+=(const Counters& other);
 };

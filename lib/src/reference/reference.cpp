@@ -150,8 +150,11 @@ Evaluation evaluate_query(Kind kind, const Query& query, const Options& options,
 }
 
 void count_exact_stage_and_time(const Evaluation& evaluation, Counters& counters) {
-  counters.exact_escalations += evaluation.exact_stage != ExactStage::none;
+  const bool escalated = evaluation.exact_stage != ExactStage::none;
+  counters.exact_escalations += escalated;
   counters.max_query_seconds = std::max(counters.max_query_seconds, evaluation.seconds);
+  counters.solved_seconds += evaluation.seconds;
+  if (escalated) counters.escalated_seconds += evaluation.seconds;
 }
 
 }  // namespace batchccd::reference
