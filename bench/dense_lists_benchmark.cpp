@@ -112,6 +112,7 @@ void MethodOnDenseList(benchmark::State& state, const std::string& name, lab::Me
   state.SetItemsProcessed(c.candidates * state.iterations());
   state.counters["survivors"] = static_cast<double>(c.solved) / static_cast<double>(c.candidates);
   state.counters["hits"] = static_cast<double>(c.hits);
+  state.counters["escalations"] = static_cast<double>(c.exact_escalations);
   if (options.time_queries && c.solved > 0) {
     const double solved = static_cast<double>(c.solved) * static_cast<double>(state.iterations());
     state.counters["us_per_survivor"] = solved_seconds / solved * 1e6;
