@@ -178,8 +178,18 @@ TEST(SignFilter, VerdictsDoNotDependOnUnitsAcrossTheDirectFramesWindow) {
 TEST(SeparationFilter, VerdictsDoNotDependOnUnitsAcrossTheDirectFramesWindow) {
   // Its window is [2^-40, 2^40] (differences up to 3.2); 2^-190 and 2^190
   // would underflow or overflow in it.
-  expect_verdicts_independent_of_units({.sign = false, .separation = true}, 0.6,
+  expect_verdicts_independent_of_units({.sign = false, .separation = true, .pieces = 1}, 0.6,
                                        {-1000, -600, -190, -100, -42, -41, -40, -39, 37, 38, 39, 40, 100, 190, 600, 1000});
+}
+
+// The pieces and the swept boxes run in the separation filter's direct
+// frame only (outside it the whole-step filters decide alone), where
+// scaling by a power of two changes nothing either.
+TEST(PiecewiseFilter, VerdictsDoNotDependOnUnitsWithinTheDirectWindow) {
+  for (const int pieces : {2, 4})
+    for (const bool swept_box : {false, true})
+      expect_verdicts_independent_of_units({.sign = true, .separation = true, .pieces = pieces, .swept_box = swept_box},
+                                           1.5, {-38, -30, -12, 12, 30, 37});
 }
 
 TEST(InclusionSolver, FindsTheCrossingTime) {
