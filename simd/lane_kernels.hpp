@@ -571,67 +571,84 @@ template <class Arch, bool within, class Source, class Group>
 struct LaterCulls {
   std::uint32_t sign = 0;        // by the sign filter's halves
   std::uint32_t separation = 0;  // by the separation filter, of the lanes the halves keep
-  std::uint32_t pieces = 0;      // by both over pieces of the step, of the lanes those keep
-  std::uint32_t swept_box = 0;   // by the swept boxes, of the lanes all those keep
 };
 
 // The second pass, over the first one's survivors: the sign filter's halves
 // in its direct frame (lanes in the scaled frame had the whole filter in the
-// first pass), then the separation filter in its own frames, then (in the
-// separation filter's direct frame only) the pieces and the swept boxes.
+// first pass), then the separation filter in its own frames.
 template <class Arch, class Source>
 [[gnu::flatten]] LaterCulls later_culled_lanes(const Source& source, const ListedGroup<Arch>& group,
                                                std::size_t count, const reference::FilterSettings& settings) {
   using Double = typename Lanes<Arch>::Double;
   const DirectDifferences<Arch> differences(source, group);
   const std::uint32_t lanes_in_use = (1u << count) - 1;
-  const bool halves = settings.sign && settings.subdivide && !settings.within;
-  const bool pieces = settings.separation && settings.pieces > 1;
   LaterCulls culled;
-  reference::SignTest<Double> test{};
-  if (settings.sign && (halves || pieces))
-    test = reference::sign_test(differences.relative, differences.largest,
-                                Double(reference::direct_coefficient_error().floor), settings.certified);
-  if (halves) {
+  if (settings.sign && settings.subdivide && !settings.within) {
     const auto direct = differences.within(reference::kDirectLowest, reference::kDirectHighest);
+    const auto test = reference::sign_test(differences.relative, differences.largest,
+                                           Double(reference::direct_coefficient_error().floor),
+                                           settings.certified);
     culled.sign = lane_bits<Arch>(direct & test.halves()) & lanes_in_use;
   }
-  if (!settings.separation && !settings.swept_box) return culled;
-  const auto direct = differences.within_without_nan(reference::kSeparationDirectLowest,
-                                                     reference::kSeparationDirectHighest);
-  const std::uint32_t direct_lanes = lane_bits<Arch>(direct);
-  const Double separation = settings.within ? lane_separations<Arch>(settings, group) : Double(0.0);
   if (settings.separation) {
+    const auto direct = differences.within_without_nan(reference::kSeparationDirectLowest,
+                                                       reference::kSeparationDirectHighest);
     const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
     const std::uint32_t kept = ~culled.sign & lanes_in_use;
-    // The bounds for the pieces, left there unless every lane is culled.
-    reference::SeparationMeasures<Double> measured{};
     const auto culls =
         settings.within
             ? reference::separation_filter_culls_within(source.kind, differences.relative, Double(error.relative),
-                                                        Double(error.floor), separation,
-                                                        pieces ? &measured : nullptr)
+                                                        Double(error.floor), lane_separations<Arch>(settings, group))
             : reference::separation_filter_culls(source.kind, differences.relative, Double(error.relative),
-                                                 Double(error.floor), pieces ? &measured : nullptr);
+                                                 Double(error.floor));
     culled.separation = kept & lane_bits<Arch>(direct & culls);
-    const std::uint32_t scaled_lanes = ~direct_lanes & kept;
+    const std::uint32_t scaled_lanes = ~lane_bits<Arch>(direct) & kept;
     if (scaled_lanes != 0)
       culled.separation |= scaled_lanes & separation_culled_in_scaled_frame<Arch>(source, group, settings);
-    const std::uint32_t open = kept & ~culled.separation & direct_lanes;
-    if (pieces && open != 0)
-      culled.pieces =
-          open & lane_bits<Arch>(reference::piecewise_culls(
-                     settings.pieces, source.kind, differences.relative, measured, Double(error.relative),
-                     Double(error.floor), settings.sign ? &test : nullptr, differences.largest, settings.certified,
-                     settings.within, separation));
   }
-  if (settings.swept_box) {
-    const std::uint32_t open = lanes_in_use & ~(culled.sign | culled.separation | culled.pieces) & direct_lanes;
-    if (open != 0)
-      culled.swept_box = open & lane_bits<Arch>(reference::swept_boxes_apart(
-                                    source.kind, differences.relative, differences.overall, settings.within,
-                                    separation));
+  return culled;
+}
+
+// What the third pass culls, bit k for lane k.
+struct FinalCulls {
+  std::uint32_t pieces = 0;     // by both filters over pieces of the step
+  std::uint32_t swept_box = 0;  // by the swept boxes, of the lanes the pieces keep
+};
+
+// The third pass, over the second one's survivors, in the separation
+// filter's direct frame only: the pieces, then the swept boxes. A pass of
+// its own, in full lanes: run on the second pass's groups, nearly half of
+// them had a lane left to test (of eight), and paid for all eight. The
+// whole-step bounds are computed again, as the filters compute them.
+template <class Arch, class Source>
+[[gnu::flatten]] FinalCulls final_culled_lanes(const Source& source, const ListedGroup<Arch>& group,
+                                               std::size_t count, const reference::FilterSettings& settings) {
+  using Double = typename Lanes<Arch>::Double;
+  const DirectDifferences<Arch> differences(source, group);
+  const std::uint32_t open = ((1u << count) - 1) &
+                             lane_bits<Arch>(differences.within_without_nan(reference::kSeparationDirectLowest,
+                                                                            reference::kSeparationDirectHighest));
+  FinalCulls culled;
+  if (open == 0) return culled;
+  const Double separation = settings.within ? lane_separations<Arch>(settings, group) : Double(0.0);
+  if (settings.separation && settings.pieces > 1) {
+    const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
+    const reference::SeparationMeasures<Double> measured = reference::separation_measures(
+        source.kind, differences.relative, Double(error.relative), Double(error.floor));
+    reference::SignTest<Double> test{};
+    if (settings.sign)
+      test = reference::sign_test(differences.relative, differences.largest,
+                                  Double(reference::direct_coefficient_error().floor), settings.certified);
+    culled.pieces = open & lane_bits<Arch>(reference::piecewise_culls(
+                               settings.pieces, source.kind, differences.relative, measured, Double(error.relative),
+                               Double(error.floor), settings.sign ? &test : nullptr, differences.largest,
+                               settings.certified, settings.within, separation));
   }
+  const std::uint32_t left = open & ~culled.pieces;
+  if (settings.swept_box && left != 0)
+    culled.swept_box = left & lane_bits<Arch>(reference::swept_boxes_apart(source.kind, differences.relative,
+                                                                          differences.overall, settings.within,
+                                                                          separation));
   return culled;
 }
 
@@ -684,7 +701,8 @@ template <class Arch>
 
 // The filters over candidates [begin, end): see FilterFunction. The first
 // pass runs over all of them and compacts its survivors; the second runs
-// over those alone, in full lanes, and compacts them again.
+// over those alone, in full lanes, and compacts them again; the third
+// (pieces, swept boxes) likewise over the second's.
 template <class Arch, bool within, class Source>
 std::size_t filter_range_of(const Source& source, std::size_t begin, std::size_t end,
                             const reference::FilterSettings& settings, std::uint32_t* survivors,
@@ -708,26 +726,37 @@ std::size_t filter_range_of(const Source& source, std::size_t begin, std::size_t
     const auto offset = static_cast<std::uint32_t>(first - begin);
     kept += compress<Arch>(~culled & ((1u << count) - 1), offset, survivors + kept);
   }
-  if (!(settings.sign && settings.subdivide && !within) && !settings.separation && !settings.swept_box) return kept;
-  const std::size_t first_survivors = kept;
-  kept = 0;
-  std::uint32_t offsets[8] = {};  // survivors' indices relative to begin, lane by lane
-  for (std::size_t first = 0; first < first_survivors; first += lanes) {
-    const std::size_t count = std::min(first_survivors - first, lanes);
-    ListedGroup<Arch> group;
-    for (std::size_t j = 0; j < lanes; ++j) {
-      offsets[j] = survivors[first + std::min(j, count - 1)];
-      group.candidate[j] = static_cast<std::int64_t>(begin + offsets[j]);
+  // Survivors regrouped into full lanes, pass after pass: `cull` returns
+  // the lanes it culls, counting them.
+  const auto pass = [&](const auto& cull) {
+    const std::size_t given = kept;
+    kept = 0;
+    std::uint32_t offsets[8] = {};  // survivors' indices relative to begin, lane by lane
+    for (std::size_t first = 0; first < given; first += lanes) {
+      const std::size_t count = std::min(given - first, lanes);
+      ListedGroup<Arch> group;
+      for (std::size_t j = 0; j < lanes; ++j) {
+        offsets[j] = survivors[first + std::min(j, count - 1)];
+        group.candidate[j] = static_cast<std::int64_t>(begin + offsets[j]);
+      }
+      const std::uint32_t keep = ~cull(group, count) & ((1u << count) - 1);
+      kept += compress<Arch>(keep, offsets, survivors + kept);
     }
-    const LaterCulls culled = later_culled_lanes<Arch>(source, group, count, settings);
-    counts.sign += static_cast<std::size_t>(__builtin_popcount(culled.sign));
-    counts.separation += static_cast<std::size_t>(__builtin_popcount(culled.separation));
-    counts.pieces += static_cast<std::size_t>(__builtin_popcount(culled.pieces));
-    counts.swept_box += static_cast<std::size_t>(__builtin_popcount(culled.swept_box));
-    const std::uint32_t keep =
-        ~(culled.sign | culled.separation | culled.pieces | culled.swept_box) & ((1u << count) - 1);
-    kept += compress<Arch>(keep, offsets, survivors + kept);
-  }
+  };
+  if ((settings.sign && settings.subdivide && !within) || settings.separation)
+    pass([&](const ListedGroup<Arch>& group, std::size_t count) {
+      const LaterCulls culled = later_culled_lanes<Arch>(source, group, count, settings);
+      counts.sign += static_cast<std::size_t>(__builtin_popcount(culled.sign));
+      counts.separation += static_cast<std::size_t>(__builtin_popcount(culled.separation));
+      return culled.sign | culled.separation;
+    });
+  if ((settings.separation && settings.pieces > 1) || settings.swept_box)
+    pass([&](const ListedGroup<Arch>& group, std::size_t count) {
+      const FinalCulls culled = final_culled_lanes<Arch>(source, group, count, settings);
+      counts.pieces += static_cast<std::size_t>(__builtin_popcount(culled.pieces));
+      counts.swept_box += static_cast<std::size_t>(__builtin_popcount(culled.swept_box));
+      return culled.pieces | culled.swept_box;
+    });
   return kept;
 }
 

@@ -212,6 +212,13 @@ struct SeparationMeasures {
   T displacement2, start2, end2;
 };
 
+// The same bounds computed alone, as the filters compute them.
+template <class T>
+SeparationMeasures<T> separation_measures(Kind kind, const Vector3<T> (&relative)[3][2], T error_relative, T floor) {
+  return {largest_displacement2(kind, relative, error_relative, floor),
+          distance2_at(kind, relative, 0, error_relative, floor), distance2_at(kind, relative, 1, error_relative, floor)};
+}
+
 // `measured`, if given, receives the bounds whenever the filter computed
 // them all, which it does unless it culls every lane at d0 > m alone.
 template <class T>
