@@ -58,6 +58,7 @@ struct Stages {
 constexpr Stages kStages[] = {{"", Options{}.filter_pieces, Options{}.swept_box_filter},
                               {"/pieces_1", 1, false},
                               {"/pieces_2", 2, false},
+                              {"/pieces_8", 8, false},
                               {"/pieces_4/swept_box", 4, true}};
 
 void MeshCcdOnDenseList(benchmark::State& state, const std::string& name, double separation, Stages stages) {

@@ -186,7 +186,7 @@ TEST(SeparationFilter, VerdictsDoNotDependOnUnitsAcrossTheDirectFramesWindow) {
 // frame only (outside it the whole-step filters decide alone), where
 // scaling by a power of two changes nothing either.
 TEST(PiecewiseFilter, VerdictsDoNotDependOnUnitsWithinTheDirectWindow) {
-  for (const int pieces : {2, 4})
+  for (const int pieces : {2, 4, 8})
     for (const bool swept_box : {false, true})
       expect_verdicts_independent_of_units({.sign = true, .separation = true, .pieces = pieces, .swept_box = swept_box},
                                            1.5, {-38, -30, -12, 12, 30, 37});
@@ -198,7 +198,9 @@ TEST(PiecewiseFilter, VerdictsDoNotDependOnUnitsWithinTheDirectWindow) {
 // (VF) or one edge (EE) at both ends by a small random offset.
 struct MidStepQueries {
   std::mt19937_64 random{18};
-  double grid() { return std::ldexp(static_cast<double>(std::uniform_int_distribution<int>(-1024, 1024)(random)), -10); }
+  double grid() {
+    return std::ldexp(static_cast<double>(std::uniform_int_distribution<int>(-1024, 1024)(random)), -10);
+  }
   Vec3 point() { return Vec3(grid(), grid(), grid()); }
   int eighths() { return std::uniform_int_distribution<int>(1, 6)(random); }
 
@@ -238,7 +240,7 @@ TEST(PiecewiseFilter, CullsNoContactInTheMiddleOfTheStep) {
       const double gap = std::ldexp(1.0, -4 - trial % 12);
       const Query touching = queries.next(kind, Vec3::Zero(), speed);
       const Query near_miss = queries.next(kind, gap * direction, speed);
-      for (const int pieces : {1, 2, 4})
+      for (const int pieces : {1, 2, 4, 8})
         for (const bool swept_box : {false, true})
           for (const double separation : {0.0, 0.5 * gap, gap}) {
             const FilterSettings settings{.pieces = pieces, .swept_box = swept_box, .within = separation > 0,
@@ -247,7 +249,7 @@ TEST(PiecewiseFilter, CullsNoContactInTheMiddleOfTheStep) {
                 << to_string(kind) << " trial " << trial << " pieces " << pieces << " separation " << separation;
             const FilterVerdict verdict = run_filters(kind, near_miss, settings);
             culled_by_pieces += verdict.pieces;
-            if (verdict.culled() && pieces == 4 && swept_box && separation < gap) {
+            if (verdict.culled() && pieces >= 4 && swept_box && separation < gap) {
               ++near_misses_culled;
               Options exact;
               exact.mode = Mode::exact;

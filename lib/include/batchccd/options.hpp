@@ -122,8 +122,8 @@ struct Options {
   // Tang et al. 2010, for comparison.
   bool sign_filter_subdivision = true;
   bool separation_filter = true;  // distance at t0 against the largest displacement
-  // With the separation filter, what both keep is filtered again over 2 or
-  // 4 equal pieces of the step: culled when each piece is free by either
+  // With the separation filter, what both keep is filtered again over 2, 4
+  // or 8 equal pieces of the step: culled when each piece is free by either
   // filter there (docs/design.md §4a). 1 (or any other value): the whole
   // step only.
   int filter_pieces = 4;

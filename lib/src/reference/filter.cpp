@@ -108,7 +108,8 @@ FilterVerdict run_filters_within(Kind kind, const Query& query, const FilterSett
         separation_filter_culls_within(kind, direct.relative, error.relative, error.floor, separation, &measured);
     return later_stages(kind, direct, measured, settings, separation, verdict);
   }
-  if (!sign_scaled && !separation_due) return later ? later_stages(kind, direct, measured, settings, separation, verdict) : verdict;
+  if (!sign_scaled && !separation_due)
+    return later ? later_stages(kind, direct, measured, settings, separation, verdict) : verdict;
   const ScaledQuery scaled = scale_query(kind, query);
   if (!scaled.finite || scaled.coincident) return verdict;  // for the solver's own checks
   const double scaled_separation = to_scaled_length(scaled, separation);
@@ -150,7 +151,8 @@ FilterVerdict run_filters(Kind kind, const Query& query, const FilterSettings& s
     verdict.separation = separation_filter_culls(kind, direct.relative, error.relative, error.floor, &measured);
     return later_stages(kind, direct, measured, settings, 0.0, verdict);
   }
-  if (!sign_scaled && !separation_due) return later ? later_stages(kind, direct, measured, settings, 0.0, verdict) : verdict;
+  if (!sign_scaled && !separation_due)
+    return later ? later_stages(kind, direct, measured, settings, 0.0, verdict) : verdict;
   const ScaledQuery scaled = scale_query(kind, query);
   if (!scaled.finite || scaled.coincident) return verdict;  // for the solver's own checks
   if (sign_scaled) verdict.sign = sign_filter_culls(scaled, settings.certified, settings.subdivide);

@@ -13,7 +13,7 @@ struct FilterSettings {
   bool sign = true;        // the Bernstein sign test on the coplanarity cubic
   bool subdivide = true;   // its V = 2 step (false: DNF-style, the four signs only)
   bool separation = true;  // distance at t = 0 against the largest displacement
-  // With the separation filter: both filters over 2 or 4 equal pieces of
+  // With the separation filter: both filters over 2, 4 or 8 equal pieces of
   // the step for what they keep (1: the whole step only); then the swept
   // boxes (docs/design.md §4a).
   int pieces = 4;
@@ -31,10 +31,11 @@ struct FilterSettings {
 
 // The filters a call's options ask for (mode cubic runs none: callers skip them).
 inline FilterSettings filter_settings(const Options& options) {
-  return {options.mode != Mode::fast, options.sign_filter,  options.sign_filter_subdivision,
-          options.separation_filter, options.filter_pieces == 2 || options.filter_pieces == 4 ? options.filter_pieces : 1,
-          options.swept_box_filter,
-          options.min_distance > 0,      options.min_distance};
+  const int asked = options.filter_pieces;
+  const int pieces = asked == 2 || asked == 4 || asked == 8 ? asked : 1;
+  return {options.mode != Mode::fast, options.sign_filter, options.sign_filter_subdivision,
+          options.separation_filter, pieces, options.swept_box_filter, options.min_distance > 0,
+          options.min_distance};
 }
 
 // What each filter said of one query. The sign filter runs first; the

@@ -6,7 +6,7 @@
 #include "reference/sign_filter.hpp"
 
 // The filters over pieces of the step (docs/design.md §4a): the step cut
-// into 2 or 4 equal pieces, a piece free of contact when the sign test (or,
+// into 2, 4 or 8 equal pieces, a piece free of contact when the sign test (or,
 // with a separation, the plane bound) or the separation filter rules it out
 // there, a query culled when every piece is free. Then the margin-free
 // swept boxes. Written once over T (double, or an xsimd batch), like the
@@ -33,44 +33,39 @@ void uniform_half(const T (&half)[4], bool left, T (&out)[4]) {
   for (int k = 0; k < 4; ++k) out[k] = T(double(1 << (left ? 3 - k : k))) * half[k];
 }
 
-// Quarters' coefficients carry the halves' error (24 u, 16 actual roundings
-// at most with the coefficients' own) plus three roundings of the second
-// split: 32 u. The floor: the halves' times 8 (the rescaling) times the
-// second split's largest weight sum (6), bounded by 64.
-inline constexpr double kQuarterRelative = 32 * kUnitRoundoff;
-inline constexpr double kQuarterFloorFactor = 64;
+// Pieces below the halves: each split again after uniform_half. A level
+// adds three roundings to the previous one's error (24 u for the halves,
+// 16 actual roundings at most with the coefficients' own): 32 u for
+// quarters, 40 u for eighths. The floor grows by 8 for the rescaling and
+// by at most 6 for the split's weights: 64 a level.
+inline constexpr double kLevelFloorFactor = 64;
 
 template <int pieces, class T>
 PieceCubics<T, pieces> piece_cubics(const SignTest<T>& test) {
-  static_assert(pieces == 2 || pieces == 4);
+  static_assert(pieces == 2 || pieces == 4 || pieces == 8);
   constexpr double left_weight[4] = {1, 6, 12, 8}, right_weight[4] = {8, 12, 6, 1};
   PieceCubics<T, pieces> out;
-  T half[2][4], half_magnitude[2][4];
-  split_at_half(test.cubic.coefficient, half[0], half[1]);
-  split_at_half(test.cubic.magnitude, half_magnitude[0], half_magnitude[1]);
-  if constexpr (pieces == 2) {
-    for (int h = 0; h < 2; ++h)
-      for (int k = 0; k < 4; ++k) {
-        out.coefficient[h][k] = half[h][k], out.magnitude[h][k] = half_magnitude[h][k];
-        out.weight[h][k] = h == 0 ? left_weight[k] : right_weight[k];
-      }
-    out.relative = test.half_relative, out.floor = test.half_floor;
-  } else {
-    for (int h = 0; h < 2; ++h) {
+  // Level by level in place: piece j of a level becomes pieces 2j, 2j + 1.
+  split_at_half(test.cubic.coefficient, out.coefficient[0], out.coefficient[1]);
+  split_at_half(test.cubic.magnitude, out.magnitude[0], out.magnitude[1]);
+  out.relative = test.half_relative, out.floor = test.half_floor;
+  double scale = 1;  // of the weights: 8 a level below the halves
+  int level = 1;
+  for (int count = 2; count < pieces; count *= 2, ++level) {
+    for (int j = count - 1; j >= 0; --j) {  // from the last, so that no piece is overwritten before it is split
       T uniform[4], uniform_magnitude[4];
-      uniform_half(half[h], h == 0, uniform);
-      uniform_half(half_magnitude[h], h == 0, uniform_magnitude);
-      split_at_half(uniform, out.coefficient[2 * h], out.coefficient[2 * h + 1]);
-      split_at_half(uniform_magnitude, out.magnitude[2 * h], out.magnitude[2 * h + 1]);
-      for (int k = 0; k < 4; ++k) {  // 8 times the quarter's weighted coefficients, then split's factors
-        out.weight[2 * h][k] = 8 * left_weight[k];
-        out.weight[2 * h + 1][k] = 8 * right_weight[k];
-      }
+      uniform_half(out.coefficient[j], j % 2 == 0, uniform);
+      uniform_half(out.magnitude[j], j % 2 == 0, uniform_magnitude);
+      split_at_half(uniform, out.coefficient[2 * j], out.coefficient[2 * j + 1]);
+      split_at_half(uniform_magnitude, out.magnitude[2 * j], out.magnitude[2 * j + 1]);
     }
-    // test.relative is 16 u certified, 0 plain.
-    out.relative = test.relative * T(kQuarterRelative / (16 * kUnitRoundoff));
-    out.floor = test.half_floor * T(kQuarterFloorFactor);
+    scale *= 8;
+    out.floor = out.floor * T(kLevelFloorFactor);
   }
+  // test.relative is 16 u certified, 0 plain: 16 u (2 + level) / 2 below the halves.
+  if (level > 1) out.relative = test.relative * T(0.5 * (2 + level));
+  for (int j = 0; j < pieces; ++j)
+    for (int k = 0; k < 4; ++k) out.weight[j][k] = scale * (j % 2 == 0 ? left_weight[k] : right_weight[k]);
   return out;
 }
 
@@ -95,39 +90,44 @@ auto piece_beyond(const PieceCubics<T, pieces>& cubics, int j, T reach) {
 }
 
 // Lower bounds of the distance at the pieces' inner ends t = j / pieces,
-// in units of 1 / pieces (the positions there times `pieces`): r(1/2) =
-// (r0 + r1) / 2, r(1/4) = (2 r0 + (r0 + r1)) / 4, and so on, so that only
-// sums round (a sum that underflows is exact). Each inner position errs
-// by at most 4 u of the magnitude given with it (the inputs' own rounding
-// and two sums), against u of its own value for a difference of doubles:
-// at most 3 roundings more for each of the at most 6 factors of a term,
-// which the doubled relative bound (128 u) covers with room for the
-// magnitudes' own rounding. Positions stay below 2^42 in the direct
-// window, so SeparationErrors::floor still holds.
+// in units of 1 / pieces (the positions there times `pieces`), halving
+// level by level: at 2 pieces 2 r0, r0 + r1, 2 r1; then a level's point
+// 2j is twice the previous one's point j (exact) and point 2j + 1 the sum
+// of points j and j + 1, so that only sums round (and a sum that
+// underflows is exact). Each inner position errs by at most (level + 2) u
+// of the magnitude carried with it (the same sums over absolute values):
+// the inputs' own rounding and one sum a level. Against u of its own value
+// for a difference of doubles, that is at most 4 roundings more (8 pieces)
+// for each of the at most 6 factors of a term, which the doubled relative
+// bound (128 u) covers with room for the magnitudes' own rounding.
+// Positions stay below 2^43 in the direct window, so
+// SeparationErrors::floor still holds.
 template <int pieces, class T>
 void inner_distance_lower_bounds(Kind kind, const Vector3<T> (&relative)[3][2], T error_relative, T floor,
                                  T (&distance)[pieces + 1]) {
   using std::sqrt;
   const T relative_bound = T(2) * error_relative;
   const T shrink(SeparationErrors::shrink);
-  Vector3<T> position[pieces - 1][3], magnitude[pieces - 1][3];
+  Vector3<T> position[pieces + 1][3], magnitude[pieces + 1][3];
   for (int i = 0; i < 3; ++i) {
-    const Vector3<T> sum = relative[i][0] + relative[i][1];
-    const Vector3<T> sum_magnitude = absolute(relative[i][0]) + absolute(relative[i][1]);
-    if constexpr (pieces == 2) {
-      position[0][i] = sum, magnitude[0][i] = sum_magnitude;
-    } else {
-      const Vector3<T> twice_start = relative[i][0] + relative[i][0], twice_end = relative[i][1] + relative[i][1];
-      position[0][i] = twice_start + sum;
-      magnitude[0][i] = (absolute(relative[i][0]) + absolute(relative[i][0])) + sum_magnitude;
-      position[1][i] = sum + sum, magnitude[1][i] = sum_magnitude + sum_magnitude;
-      position[2][i] = sum + twice_end;
-      magnitude[2][i] = sum_magnitude + (absolute(relative[i][1]) + absolute(relative[i][1]));
-    }
+    const Vector3<T> start = absolute(relative[i][0]), end = absolute(relative[i][1]);
+    position[0][i] = relative[i][0] + relative[i][0], magnitude[0][i] = start + start;
+    position[1][i] = relative[i][0] + relative[i][1], magnitude[1][i] = start + end;
+    position[2][i] = relative[i][1] + relative[i][1], magnitude[2][i] = end + end;
   }
+  for (int count = 2; count < pieces; count *= 2)
+    for (int j = count; j >= 0; --j)  // from the last, in place
+      for (int i = 0; i < 3; ++i) {
+        if (j < count) {
+          position[2 * j + 1][i] = position[j][i] + position[j + 1][i];
+          magnitude[2 * j + 1][i] = magnitude[j][i] + magnitude[j + 1][i];
+        }
+        position[2 * j][i] = position[j][i] + position[j][i];
+        magnitude[2 * j][i] = magnitude[j][i] + magnitude[j][i];
+      }
   for (int j = 1; j < pieces; ++j) {
-    const auto& p = position[j - 1];
-    const auto& m = magnitude[j - 1];
+    const auto& p = position[j];
+    const auto& m = magnitude[j];
     const T distance2 =
         kind == Kind::vertex_face
             ? vertex_face_distance2(p[0], m[0], p[1], m[1], p[2], m[2], relative_bound, floor)
@@ -181,11 +181,14 @@ auto piecewise_culls(Kind kind, const Vector3<T> (&relative)[3][2], const Separa
   return all_free;
 }
 
-// piecewise_culls for a count of pieces known at run time (2 or 4).
+// piecewise_culls for a count of pieces known at run time (2, 4 or 8).
 template <class T>
 auto piecewise_culls(int pieces, Kind kind, const Vector3<T> (&relative)[3][2], const SeparationMeasures<T>& measured,
                      T error_relative, T floor, const SignTest<T>* sign, const T (&largest)[3][2], bool certified,
                      bool within, T separation) {
+  if (pieces == 8)
+    return piecewise_culls<8>(kind, relative, measured, error_relative, floor, sign, largest, certified, within,
+                              separation);
   if (pieces == 4)
     return piecewise_culls<4>(kind, relative, measured, error_relative, floor, sign, largest, certified, within,
                               separation);

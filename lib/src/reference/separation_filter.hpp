@@ -216,7 +216,8 @@ struct SeparationMeasures {
 template <class T>
 SeparationMeasures<T> separation_measures(Kind kind, const Vector3<T> (&relative)[3][2], T error_relative, T floor) {
   return {largest_displacement2(kind, relative, error_relative, floor),
-          distance2_at(kind, relative, 0, error_relative, floor), distance2_at(kind, relative, 1, error_relative, floor)};
+          distance2_at(kind, relative, 0, error_relative, floor),
+          distance2_at(kind, relative, 1, error_relative, floor)};
 }
 
 // `measured`, if given, receives the bounds whenever the filter computed
