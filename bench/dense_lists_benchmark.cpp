@@ -8,10 +8,10 @@
 //   build/bench/batchccd_dense_lists_benchmark [--benchmark_filter=REGEX]
 //
 // Each list with the default filter stages (4 pieces), then with the whole
-// step only (pieces_1, the filters of 0.3.0), 2 pieces, and 4 pieces with
-// the swept boxes. Counters per call: candidates/s (items_per_second), the share
-// culled by each lane filter stage, the survivors' share and the hits. Ratios between
-// separations are only meaningful within one run.
+// step only (pieces_1, the filters of 0.3.0), 2 and 8 pieces, and 4 pieces
+// with the swept boxes. Counters per call: candidates/s (items_per_second),
+// the share culled by each lane filter stage, the survivors' share and the
+// hits. Ratios between separations are only meaningful within one run.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -98,13 +98,12 @@ const bool registered = [] {
   for (const char* name : kSceneNames)
     for (const double separation : kSeparations)
       for (const Stages& stages : kStages)
-      benchmark::RegisterBenchmark(
-          ("MeshCcdOnDenseList/" + std::string(name) + "/min_distance_" + std::to_string(separation).substr(0, 5) +
-           stages.name)
-              .c_str(),
-          MeshCcdOnDenseList, std::string(name), separation, stages)
-          ->Unit(benchmark::kMillisecond)
-          ->UseRealTime();
+        benchmark::RegisterBenchmark(("MeshCcdOnDenseList/" + std::string(name) + "/min_distance_" +
+                                      std::to_string(separation).substr(0, 5) + stages.name)
+                                         .c_str(),
+                                     MeshCcdOnDenseList, std::string(name), separation, stages)
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime();
   return true;
 }();
 
