@@ -63,6 +63,26 @@ TEST_F(SharedData, ConservativeModeMissesNoCollision) {
   record(runs, Mode::conservative);
 }
 
+// The stages not on by default, at their strongest: 8 pieces and the swept
+// boxes cull more, and still no collision.
+TEST_F(SharedData, EveryFilterStageMissesNoCollision) {
+  Options options;
+  options.filter_pieces = 8;
+  options.swept_box_filter = true;
+  const std::vector<DataRun> runs = testing::run_shared_data(options);
+  ASSERT_FALSE(runs.empty());
+  std::int64_t by_pieces = 0, by_boxes = 0;
+  for (const DataRun& run : runs) {
+    ASSERT_TRUE(run.truth.has_value()) << run.input << " has no ground truth";
+    EXPECT_EQ(run.false_negatives(), 0) << run.input << " " << to_string(run.kind);
+    expect_counters_match_results(run);
+    by_pieces += run.counters.culled_by_pieces;
+    by_boxes += run.counters.culled_by_swept_box;
+  }
+  EXPECT_GT(by_pieces, 0);
+  EXPECT_GT(by_boxes, 0);
+}
+
 TEST_F(SharedData, BaselineModesCountersMatchTheirResults) {
   for (Mode mode : {Mode::fast, Mode::cubic}) {
     const std::vector<DataRun> runs = run_all_data(mode);
