@@ -34,10 +34,10 @@ void uniform_half(const T (&half)[4], bool left, T (&out)[4]) {
 }
 
 // Pieces below the halves: each split again after uniform_half. A level
-// adds three roundings to the previous one's error (24 u for the halves,
-// 16 actual roundings at most with the coefficients' own): 32 u for
-// quarters, 40 u for eighths. The floor grows by 8 for the rescaling and
-// by at most 6 for the split's weights: 64 a level.
+// adds three roundings (halves: 13 with the coefficients' own, bounded by
+// 24 u; quarters 16, by 32 u; eighths 19, by 40 u; the rest of each bound
+// covers the magnitudes' own rounding). The floor grows by 8 for the
+// rescaling and by at most 6 for the split's weights: 64 a level.
 inline constexpr double kLevelFloorFactor = 64;
 
 template <int pieces, class T>
@@ -52,7 +52,7 @@ PieceCubics<T, pieces> piece_cubics(const SignTest<T>& test) {
   double scale = 1;  // of the weights: 8 a level below the halves
   int level = 1;
   for (int count = 2; count < pieces; count *= 2, ++level) {
-    for (int j = count - 1; j >= 0; --j) {  // from the last, so that no piece is overwritten before it is split
+    for (int j = count - 1; j >= 0; --j) {  // from the last: no piece overwritten before its split
       T uniform[4], uniform_magnitude[4];
       uniform_half(out.coefficient[j], j % 2 == 0, uniform);
       uniform_half(out.magnitude[j], j % 2 == 0, uniform_magnitude);
