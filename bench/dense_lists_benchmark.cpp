@@ -7,10 +7,13 @@
 //
 //   build/bench/batchccd_dense_lists_benchmark [--benchmark_filter=REGEX]
 //
-// Counters per call: candidates/s (items_per_second), the share culled by
-// each lane filter, the survivors' share and the hits. Ratios between
-// separations are only meaningful within one run. MethodOnDenseList: the
-// modes and the cubic baseline at no separation, with where the time goes.
+// Each list with the default filter stages (4 pieces), then with the whole
+// step only (pieces_1, the filters of 0.3.0), 2 and 8 pieces, and 4 pieces
+// with the swept boxes. Counters per call: candidates/s (items_per_second),
+// the share culled by each lane filter stage, the survivors' share and the
+// hits. Ratios between separations are only meaningful within one run.
+// MethodOnDenseList: the modes and the cubic baseline at no separation,
+// with where the time goes.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -49,7 +52,20 @@ const DenseList* dense_list(const std::string& name) {
   return &lists.emplace(name, std::move(list)).first->second;
 }
 
-void MeshCcdOnDenseList(benchmark::State& state, const std::string& name, double separation) {
+// The filter stages after the whole-step filters (lab::Settings::filter_pieces,
+// swept_box_filter): the default, and the variants to compare it with.
+struct Stages {
+  const char* name;  // "" for the default
+  int pieces;
+  bool swept_box;
+};
+constexpr Stages kStages[] = {{"", lab::Settings{}.filter_pieces, lab::Settings{}.swept_box_filter},
+                              {"/pieces_1", 1, false},
+                              {"/pieces_2", 2, false},
+                              {"/pieces_8", 8, false},
+                              {"/pieces_4/swept_box", 4, true}};
+
+void MeshCcdOnDenseList(benchmark::State& state, const std::string& name, double separation, Stages stages) {
   const DenseList* list = dense_list(name);
   if (list == nullptr) {
     state.SkipWithError("../shared/data/scenes is absent");
@@ -60,11 +76,13 @@ void MeshCcdOnDenseList(benchmark::State& state, const std::string& name, double
   options.per_candidate_results = false;
   options.hit_list = true;
   options.min_distance = separation * list->mean_edge_length;
+  const lab::Settings settings{.filter_pieces = stages.pieces, .swept_box_filter = stages.swept_box};
   const MeshView view{list->scene.positions_t0, list->scene.positions_t1, list->scene.faces};
   BatchResult result;
-  mesh_ccd(view, list->candidates, options, result);  // first touch and allocation outside the timing
+  // First touch and allocation outside the timing.
+  lab::mesh_ccd(view, list->candidates, MinDistances{}, options, settings, result);
   for (auto _ : state) {
-    mesh_ccd(view, list->candidates, options, result);
+    lab::mesh_ccd(view, list->candidates, MinDistances{}, options, settings, result);
     benchmark::DoNotOptimize(result.earliest_toi);
   }
   const Counters& c = result.counters;
@@ -72,6 +90,8 @@ void MeshCcdOnDenseList(benchmark::State& state, const std::string& name, double
   state.SetItemsProcessed(c.candidates * state.iterations());
   state.counters["sign_culled"] = share(c.culled_by_sign);
   state.counters["separation_culled"] = share(c.culled_by_separation);
+  state.counters["pieces_culled"] = share(c.culled_by_pieces);
+  state.counters["swept_box_culled"] = share(c.culled_by_swept_box);
   state.counters["survivors"] = share(c.solved);
   state.counters["hits"] = static_cast<double>(c.hits);
   state.counters["undecided"] = static_cast<double>(c.undecided);
@@ -125,12 +145,13 @@ void MethodOnDenseList(benchmark::State& state, const std::string& name, lab::Me
 const bool registered = [] {
   for (const char* name : kSceneNames)
     for (const double separation : kSeparations)
-      benchmark::RegisterBenchmark(
-          ("MeshCcdOnDenseList/" + std::string(name) + "/min_distance_" + std::to_string(separation).substr(0, 5))
-              .c_str(),
-          MeshCcdOnDenseList, std::string(name), separation)
-          ->Unit(benchmark::kMillisecond)
-          ->UseRealTime();
+      for (const Stages& stages : kStages)
+        benchmark::RegisterBenchmark(("MeshCcdOnDenseList/" + std::string(name) + "/min_distance_" +
+                                      std::to_string(separation).substr(0, 5) + stages.name)
+                                         .c_str(),
+                                     MeshCcdOnDenseList, std::string(name), separation, stages)
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime();
   for (const char* name : kSceneNames)
     for (const lab::Method method : {lab::kConservative, lab::kExact, lab::kCubic})
       benchmark::RegisterBenchmark(("MethodOnDenseList/" + std::string(name) + "/" + to_string(method)).c_str(),

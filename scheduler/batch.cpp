@@ -98,6 +98,8 @@ std::vector<std::size_t> filter_source(const Source& source, std::size_t count,
         counters.culled += static_cast<std::int64_t>(range.size() - kept);
         counters.culled_by_sign += static_cast<std::int64_t>(culls.sign);
         counters.culled_by_separation += static_cast<std::int64_t>(culls.separation);
+        counters.culled_by_pieces += static_cast<std::int64_t>(culls.pieces);
+        counters.culled_by_swept_box += static_cast<std::int64_t>(culls.swept_box);
         std::vector<std::size_t>& mine = survivors.local();
         for (std::size_t j = 0; j < kept; ++j) mine.push_back(range.begin() + kept_in_batch[j]);
       },

@@ -23,6 +23,8 @@ std::size_t filter_range_scalar(const Source& source, std::size_t begin, std::si
     const reference::FilterVerdict verdict = reference::run_filters(source.kind, query_at(source, i), own);
     counts.sign += verdict.sign;
     counts.separation += verdict.separation;
+    counts.pieces += verdict.pieces;
+    counts.swept_box += verdict.swept_box;
     if (!verdict.culled()) survivors[kept++] = static_cast<std::uint32_t>(i - begin);
   }
   return kept;

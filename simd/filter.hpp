@@ -12,10 +12,13 @@
 // per-instruction-set kernels, runtime dispatch).
 namespace batchccd::simd {
 
-// Candidates each filter culled (one both cull counts for both).
+// Candidates each filter culled (each cull counted once, by the first stage
+// that makes it: reference::FilterVerdict).
 struct FilterCounts {
   std::size_t sign = 0;
   std::size_t separation = 0;
+  std::size_t pieces = 0;
+  std::size_t swept_box = 0;
 };
 
 // Candidates a worker filters at once (the scheduler's batches): the second

@@ -19,6 +19,7 @@
 #include "reference/bernstein.hpp"
 #include "reference/error_bounds.hpp"
 #include "reference/filter.hpp"
+#include "reference/piecewise_filter.hpp"
 #include "reference/separation_filter.hpp"
 #include "reference/scaled_query.hpp"
 #include "reference/sign_filter.hpp"
@@ -608,6 +609,49 @@ template <class Arch, class Source>
   return culled;
 }
 
+// What the third pass culls, bit k for lane k.
+struct FinalCulls {
+  std::uint32_t pieces = 0;     // by both filters over pieces of the step
+  std::uint32_t swept_box = 0;  // by the swept boxes, of the lanes the pieces keep
+};
+
+// The third pass, over the second one's survivors, in the separation
+// filter's direct frame only: the pieces, then the swept boxes. A pass of
+// its own, in full lanes: run on the second pass's groups, nearly half of
+// them had a lane left to test (of eight), and paid for all eight. The
+// whole-step bounds are computed again, as the filters compute them.
+template <class Arch, class Source>
+[[gnu::flatten]] FinalCulls final_culled_lanes(const Source& source, const ListedGroup<Arch>& group,
+                                               std::size_t count, const reference::FilterSettings& settings) {
+  using Double = typename Lanes<Arch>::Double;
+  const DirectDifferences<Arch> differences(source, group);
+  const std::uint32_t open = ((1u << count) - 1) &
+                             lane_bits<Arch>(differences.within_without_nan(reference::kSeparationDirectLowest,
+                                                                            reference::kSeparationDirectHighest));
+  FinalCulls culled;
+  if (open == 0) return culled;
+  const Double separation = settings.within ? lane_separations<Arch>(settings, group) : Double(0.0);
+  if (settings.separation && settings.pieces > 1) {
+    const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
+    const reference::SeparationMeasures<Double> measured = reference::separation_measures(
+        source.kind, differences.relative, Double(error.relative), Double(error.floor));
+    reference::SignTest<Double> test{};
+    if (settings.sign)
+      test = reference::sign_test(differences.relative, differences.largest,
+                                  Double(reference::direct_coefficient_error().floor), settings.certified);
+    culled.pieces = open & lane_bits<Arch>(reference::piecewise_culls(
+                               settings.pieces, source.kind, differences.relative, measured, Double(error.relative),
+                               Double(error.floor), settings.sign ? &test : nullptr, differences.largest,
+                               settings.certified, settings.within, separation));
+  }
+  const std::uint32_t left = open & ~culled.pieces;
+  if (settings.swept_box && left != 0)
+    culled.swept_box = left & lane_bits<Arch>(reference::swept_boxes_apart(source.kind, differences.relative,
+                                                                          differences.overall, settings.within,
+                                                                          separation));
+  return culled;
+}
+
 // Candidates [first, first + count) checked for ids the mesh does not have
 // (sources.hpp, IndexOutOfRange). A full group in vector lanes straight
 // from the candidate list (ids as unsigned: negative ones are huge), a
@@ -657,7 +701,8 @@ template <class Arch>
 
 // The filters over candidates [begin, end): see FilterFunction. The first
 // pass runs over all of them and compacts its survivors; the second runs
-// over those alone, in full lanes, and compacts them again.
+// over those alone, in full lanes, and compacts them again; the third
+// (pieces, swept boxes) likewise over the second's.
 template <class Arch, bool within, class Source>
 std::size_t filter_range_of(const Source& source, std::size_t begin, std::size_t end,
                             const reference::FilterSettings& settings, std::uint32_t* survivors,
@@ -681,23 +726,37 @@ std::size_t filter_range_of(const Source& source, std::size_t begin, std::size_t
     const auto offset = static_cast<std::uint32_t>(first - begin);
     kept += compress<Arch>(~culled & ((1u << count) - 1), offset, survivors + kept);
   }
-  if (!(settings.sign && settings.subdivide && !within) && !settings.separation) return kept;
-  const std::size_t first_survivors = kept;
-  kept = 0;
-  std::uint32_t offsets[8] = {};  // survivors' indices relative to begin, lane by lane
-  for (std::size_t first = 0; first < first_survivors; first += lanes) {
-    const std::size_t count = std::min(first_survivors - first, lanes);
-    ListedGroup<Arch> group;
-    for (std::size_t j = 0; j < lanes; ++j) {
-      offsets[j] = survivors[first + std::min(j, count - 1)];
-      group.candidate[j] = static_cast<std::int64_t>(begin + offsets[j]);
+  // Survivors regrouped into full lanes, pass after pass: `cull` returns
+  // the lanes it culls, counting them.
+  const auto pass = [&](const auto& cull) {
+    const std::size_t given = kept;
+    kept = 0;
+    std::uint32_t offsets[8] = {};  // survivors' indices relative to begin, lane by lane
+    for (std::size_t first = 0; first < given; first += lanes) {
+      const std::size_t count = std::min(given - first, lanes);
+      ListedGroup<Arch> group;
+      for (std::size_t j = 0; j < lanes; ++j) {
+        offsets[j] = survivors[first + std::min(j, count - 1)];
+        group.candidate[j] = static_cast<std::int64_t>(begin + offsets[j]);
+      }
+      const std::uint32_t keep = ~cull(group, count) & ((1u << count) - 1);
+      kept += compress<Arch>(keep, offsets, survivors + kept);
     }
-    const LaterCulls culled = later_culled_lanes<Arch>(source, group, count, settings);
-    counts.sign += static_cast<std::size_t>(__builtin_popcount(culled.sign));
-    counts.separation += static_cast<std::size_t>(__builtin_popcount(culled.separation));
-    const std::uint32_t keep = ~(culled.sign | culled.separation) & ((1u << count) - 1);
-    kept += compress<Arch>(keep, offsets, survivors + kept);
-  }
+  };
+  if ((settings.sign && settings.subdivide && !within) || settings.separation)
+    pass([&](const ListedGroup<Arch>& group, std::size_t count) {
+      const LaterCulls culled = later_culled_lanes<Arch>(source, group, count, settings);
+      counts.sign += static_cast<std::size_t>(__builtin_popcount(culled.sign));
+      counts.separation += static_cast<std::size_t>(__builtin_popcount(culled.separation));
+      return culled.sign | culled.separation;
+    });
+  if ((settings.separation && settings.pieces > 1) || settings.swept_box)
+    pass([&](const ListedGroup<Arch>& group, std::size_t count) {
+      const FinalCulls culled = final_culled_lanes<Arch>(source, group, count, settings);
+      counts.pieces += static_cast<std::size_t>(__builtin_popcount(culled.pieces));
+      counts.swept_box += static_cast<std::size_t>(__builtin_popcount(culled.swept_box));
+      return culled.pieces | culled.swept_box;
+    });
   return kept;
 }
 

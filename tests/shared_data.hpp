@@ -58,10 +58,12 @@ DataRun timed_run(std::string input, Kind kind, std::optional<std::vector<bool>>
 }
 
 // Every input by `method` with `options` (per-candidate results and query
-// timing on).
-inline std::vector<DataRun> run_shared_data(const lab::Method& method, Options options = {}) {
+// timing on) and the filter stages of `stages`.
+inline std::vector<DataRun> run_shared_data(const lab::Method& method, Options options = {},
+                                            lab::Settings stages = {}) {
   options = method.applied_to(options);
-  const lab::Settings settings = method.settings();
+  lab::Settings settings = stages;
+  settings.baseline = method.baseline;
   namespace fs = std::filesystem;
   options.per_candidate_results = true;
   options.time_queries = true;

@@ -180,8 +180,89 @@ TEST(SignFilter, VerdictsDoNotDependOnUnitsAcrossTheDirectFramesWindow) {
 TEST(SeparationFilter, VerdictsDoNotDependOnUnitsAcrossTheDirectFramesWindow) {
   // Its window is [2^-40, 2^40] (differences up to 3.2); 2^-190 and 2^190
   // would underflow or overflow in it.
-  expect_verdicts_independent_of_units({.sign = false, .separation = true}, 0.6,
+  expect_verdicts_independent_of_units({.sign = false, .separation = true, .pieces = 1}, 0.6,
                                        {-1000, -600, -190, -100, -42, -41, -40, -39, 37, 38, 39, 40, 100, 190, 600, 1000});
+}
+
+// The pieces and the swept boxes run in the separation filter's direct
+// frame only (outside it the whole-step filters decide alone), where
+// scaling by a power of two changes nothing either.
+TEST(PiecewiseFilter, VerdictsDoNotDependOnUnitsWithinTheDirectWindow) {
+  for (const int pieces : {2, 4, 8})
+    for (const bool swept_box : {false, true})
+      expect_verdicts_independent_of_units({.sign = true, .separation = true, .pieces = pieces, .swept_box = swept_box},
+                                           1.5, {-38, -30, -12, 12, 30, 37});
+}
+
+// Queries that touch exactly at t = 1/2, and near misses beside them: on a
+// grid of 2^-10 with dyadic weights, x(1/2) = (x0 + x1) / 2 is the chosen
+// contact configuration in exact arithmetic; a near miss moves the vertex
+// (VF) or one edge (EE) at both ends by a small random offset.
+struct MidStepQueries {
+  std::mt19937_64 random{18};
+  double grid() {
+    return std::ldexp(static_cast<double>(std::uniform_int_distribution<int>(-1024, 1024)(random)), -10);
+  }
+  Vec3 point() { return Vec3(grid(), grid(), grid()); }
+  int eighths() { return std::uniform_int_distribution<int>(1, 6)(random); }
+
+  // Vertex p or edge b moved by `offset` at t = 0 and t = 1 (0: touching).
+  Query next(Kind kind, const Vec3& offset, double speed) {
+    Vec3 at_half[4];  // the points in the order x1..x4 at t = 1/2
+    at_half[0] = point(), at_half[1] = point(), at_half[2] = point();
+    if (kind == Kind::vertex_face) {
+      const int alpha = eighths(), beta = std::uniform_int_distribution<int>(1, 7 - alpha)(random);
+      at_half[3] = (alpha * at_half[0] + beta * at_half[1] + (8 - alpha - beta) * at_half[2]) / 8 + offset;
+    } else {
+      const int lambda = eighths();  // the edges cross at x1 + lambda/8 (x2 - x1), the middle of x3 x4
+      const Vec3 crossing = ((8 - lambda) * at_half[0] + lambda * at_half[1]) / 8;
+      at_half[2] += offset;
+      at_half[3] = 2 * crossing - at_half[2] + 2 * offset;
+    }
+    Query q;
+    for (int k = 1; k <= 4; ++k) {
+      const Vec3 velocity = speed * point();
+      q.points[point_index(kind, k)] = at_half[k - 1] - velocity;
+      q.points[point_index(kind, k) + 4] = at_half[k - 1] + velocity;
+    }
+    return q;
+  }
+};
+
+// No cull of a contact in the middle of the step, by any stage, with or
+// without a separation; near misses there are culled by the pieces, and
+// every query any stage culls is a miss by the unfiltered exact path.
+TEST(PiecewiseFilter, CullsNoContactInTheMiddleOfTheStep) {
+  MidStepQueries queries;
+  int culled_by_pieces = 0, near_misses_culled = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    for (Kind kind : {Kind::vertex_face, Kind::edge_edge}) {
+      const double speed = std::ldexp(1.0, -(trial % 8));  // motion from grid-sized to tiny
+      const Vec3 direction = queries.point().normalized();
+      const double gap = std::ldexp(1.0, -4 - trial % 12);
+      const Query touching = queries.next(kind, Vec3::Zero(), speed);
+      const Query near_miss = queries.next(kind, gap * direction, speed);
+      for (const int pieces : {1, 2, 4, 8})
+        for (const bool swept_box : {false, true})
+          for (const double separation : {0.0, 0.5 * gap, gap}) {
+            const FilterSettings settings{.pieces = pieces, .swept_box = swept_box, .within = separation > 0,
+                                          .min_distance = separation};
+            EXPECT_FALSE(run_filters(kind, touching, settings).culled())
+                << to_string(kind) << " trial " << trial << " pieces " << pieces << " separation " << separation;
+            const FilterVerdict verdict = run_filters(kind, near_miss, settings);
+            culled_by_pieces += verdict.pieces;
+            if (verdict.culled() && pieces >= 4 && swept_box && separation < gap) {
+              ++near_misses_culled;
+              const Options exact{.mode = Mode::exact, .min_distance = separation};
+              const lab::Settings unfiltered{.sign_filter = false, .separation_filter = false};
+              EXPECT_FALSE(lab::query_ccd(kind, near_miss, exact, unfiltered).hit)
+                  << to_string(kind) << " trial " << trial << " separation " << separation;
+            }
+          }
+    }
+  }
+  EXPECT_GT(culled_by_pieces, 10);
+  EXPECT_GT(near_misses_culled, 100);
 }
 
 TEST(InclusionSolver, FindsTheCrossingTime) {

@@ -56,6 +56,8 @@ void expect_identical(const BatchResult& a, const BatchResult& b, const std::str
   EXPECT_EQ(a.counters.culled, b.counters.culled) << what;
   EXPECT_EQ(a.counters.culled_by_sign, b.counters.culled_by_sign) << what;
   EXPECT_EQ(a.counters.culled_by_separation, b.counters.culled_by_separation) << what;
+  EXPECT_EQ(a.counters.culled_by_pieces, b.counters.culled_by_pieces) << what;
+  EXPECT_EQ(a.counters.culled_by_swept_box, b.counters.culled_by_swept_box) << what;
   EXPECT_EQ(a.counters.hits, b.counters.hits) << what;
 }
 

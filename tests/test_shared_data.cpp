@@ -59,6 +59,24 @@ TEST_F(SharedData, ConservativeModeMissesNoCollision) {
   record(runs, lab::kConservative);
 }
 
+// The stages not on by default, at their strongest: 8 pieces and the swept
+// boxes cull more, and still no collision.
+TEST_F(SharedData, EveryFilterStageMissesNoCollision) {
+  const std::vector<DataRun> runs =
+      testing::run_shared_data(lab::kConservative, {}, {.filter_pieces = 8, .swept_box_filter = true});
+  ASSERT_FALSE(runs.empty());
+  std::int64_t by_pieces = 0, by_boxes = 0;
+  for (const DataRun& run : runs) {
+    ASSERT_TRUE(run.truth.has_value()) << run.input << " has no ground truth";
+    EXPECT_EQ(run.false_negatives(), 0) << run.input << " " << to_string(run.kind);
+    expect_counters_match_results(run);
+    by_pieces += run.counters.culled_by_pieces;
+    by_boxes += run.counters.culled_by_swept_box;
+  }
+  EXPECT_GT(by_pieces, 0);
+  EXPECT_GT(by_boxes, 0);
+}
+
 TEST_F(SharedData, BaselinesCountersMatchTheirResults) {
   for (const lab::Method& method : {lab::kFast, lab::kCubic}) {
     const std::vector<DataRun> runs = run_all_data(method);

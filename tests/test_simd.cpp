@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "batchccd/batchccd.hpp"
+#include "batchccd/lab.hpp"
 #include "simd/filter.hpp"
 
 namespace batchccd {
@@ -38,6 +39,8 @@ std::vector<std::uint32_t> survivors(simd::FilterFunction<Source> filter, const 
   kept.resize(filter(source, begin, end, settings, kept.data(), counts));
   kept.push_back(static_cast<std::uint32_t>(counts.sign));
   kept.push_back(static_cast<std::uint32_t>(counts.separation));
+  kept.push_back(static_cast<std::uint32_t>(counts.pieces));
+  kept.push_back(static_cast<std::uint32_t>(counts.swept_box));
   return kept;
 }
 
@@ -57,22 +60,32 @@ const std::vector<double>& candidate_separations() {
 }
 
 // Certified and plain, each filter alone and both, the sign test with and
-// without its V = 2 step; and with separations (one for all, of several
-// scales, or one per candidate), each filter alone and both.
+// without its V = 2 step, over the whole step or 2, 4 or 8 pieces, with and
+// without the swept boxes; and with separations (one for all, of several
+// scales, or one per candidate), each filter alone and both, likewise.
 std::vector<reference::FilterSettings> all_settings() {
   std::vector<reference::FilterSettings> settings;
   for (bool certified : {true, false}) {
     for (auto [sign, subdivide, separation] :
          {std::tuple{true, true, false}, {true, false, false}, {false, true, true},
           {true, true, true}, {true, false, true}})
-      settings.push_back({.certified = certified, .sign = sign, .subdivide = subdivide,
-                          .separation = separation});
+      for (auto [pieces, swept_box] : {std::pair{1, false}, {4, false}, {2, true}, {8, false}})
+        if (separation || pieces == 1)
+          settings.push_back({.certified = certified, .sign = sign, .subdivide = subdivide,
+                              .separation = separation, .pieces = pieces, .swept_box = swept_box});
+    settings.push_back({.certified = certified, .sign = false, .separation = false, .pieces = 1, .swept_box = true});
     for (auto [sign, separation] : {std::pair{true, true}, {true, false}, {false, true}}) {
-      for (const double min_distance : {0.0, 1e-3, 0.25, 0x1p-1060, 1e300})
-        settings.push_back({.certified = certified, .sign = sign, .separation = separation, .within = true,
+      int variant = 0;  // the separations take turns at 2, 4 (with the boxes) and 8 pieces
+      for (const double min_distance : {0.0, 1e-3, 0.25, 0x1p-1060, 1e300}) {
+        const int pieces = 2 << (variant++ % 3);
+        settings.push_back({.certified = certified, .sign = sign, .separation = separation,
+                            .pieces = pieces, .swept_box = pieces == 4, .within = true,
                             .min_distance = min_distance});
-      settings.push_back({.certified = certified, .sign = sign, .separation = separation, .within = true,
-                          .min_distances = candidate_separations().data()});
+      }
+      settings.push_back({.certified = certified, .sign = sign, .separation = separation, .pieces = 1,
+                          .within = true, .min_distance = 1e-3});
+      settings.push_back({.certified = certified, .sign = sign, .separation = separation, .pieces = 4,
+                          .swept_box = true, .within = true, .min_distances = candidate_separations().data()});
     }
   }
   return settings;
@@ -80,7 +93,8 @@ std::vector<reference::FilterSettings> all_settings() {
 
 std::string describe(const reference::FilterSettings& s) {
   std::string text = std::string(s.certified ? "certified" : "plain") +
-                     (s.sign ? (s.subdivide ? " sign" : " sign-dnf") : "") + (s.separation ? " separation" : "");
+                     (s.sign ? (s.subdivide ? " sign" : " sign-dnf") : "") + (s.separation ? " separation" : "") +
+                     " pieces " + std::to_string(s.pieces) + (s.swept_box ? " swept-box" : "");
   if (s.within)
     text += s.min_distances ? " within per-candidate" : " within " + std::to_string(s.min_distance);
   return text;
@@ -162,10 +176,17 @@ TEST(SimdKernels, MatchTheReferenceFilterOnAdversarialQueries) {
     const simd::RawQueries source = simd::raw_queries(kind, queries.data(), queries.size());
     ASSERT_TRUE(source.stream);  // 96 MB: the lanes prefetch
     for (const reference::FilterSettings& settings : all_settings()) {
-      // Odd range ends exercise the partial last lane group. The many
-      // settings with separations take an eighth of the queries (the
-      // sanitizer build runs this test too).
-      const std::size_t begin = 3, end = settings.within ? begin + (1 << 16) + 1 : queries.size() - 5;
+      // Odd range ends exercise the partial last lane group. All the
+      // queries for the whole step and for the default stages; the many
+      // other settings take an eighth of them (the sanitizer build runs
+      // this test too).
+      const reference::FilterSettings defaults;
+      const bool whole_step = settings.pieces == 1 && !settings.swept_box;
+      const bool as_default = settings.sign == defaults.sign && settings.subdivide == defaults.subdivide &&
+                              settings.separation == defaults.separation && settings.pieces == defaults.pieces &&
+                              settings.swept_box == defaults.swept_box;
+      const bool fewer = settings.within || !(whole_step || as_default);
+      const std::size_t begin = 3, end = fewer ? begin + (1 << 16) + 1 : queries.size() - 5;
       const auto expected = survivors(simd::kScalarKernels.raw, source, begin, end, settings);
       EXPECT_LT(expected.size(), end - begin);  // something is culled
       for (const simd::FilterKernels* k : kernels)
@@ -230,7 +251,7 @@ TEST(SimdKernels, SecondPassEvaluatesTheSurvivorsItIsGiven) {
     if (settings.within && (settings.min_distances != nullptr || settings.min_distance > 1)) continue;  // within reach
     for (const simd::FilterKernels* k : vector_kernels()) {
       std::vector<std::uint32_t> kept = survivors(k->raw, source, 0, queries.size(), settings);
-      kept.resize(kept.size() - 2);  // the counts
+      kept.resize(kept.size() - 4);  // the counts
       EXPECT_EQ(kept, collisions) << to_string(k->isa) << " " << describe(settings);
     }
   }
@@ -249,22 +270,27 @@ TEST(SimdKernels, FinalDecisionsAreIdenticalOnSharedData) {
     EXPECT_EQ(a.counters.culled, b.counters.culled) << what;
     EXPECT_EQ(a.counters.culled_by_sign, b.counters.culled_by_sign) << what;
     EXPECT_EQ(a.counters.culled_by_separation, b.counters.culled_by_separation) << what;
+    EXPECT_EQ(a.counters.culled_by_pieces, b.counters.culled_by_pieces) << what;
+    EXPECT_EQ(a.counters.culled_by_swept_box, b.counters.culled_by_swept_box) << what;
   };
   for (const simd::FilterKernels* k : vector_kernels()) {
     Options scalar, vector;
     scalar.isa = Isa::scalar;
     vector.isa = k->isa;
+    const lab::Settings stages{.filter_pieces = 4, .swept_box_filter = true};
     for (const auto& entry : std::filesystem::recursive_directory_iterator(data / "sample-queries")) {
       if (entry.path().extension() != ".csv") continue;
       const QueryFile file = read_query_csv(entry.path(), *kind_from_path(entry.path()));
-      same(batch_ccd(file.kind, file.queries, scalar), batch_ccd(file.kind, file.queries, vector),
+      same(lab::batch_ccd(file.kind, file.queries, scalar, stages),
+           lab::batch_ccd(file.kind, file.queries, vector, stages),
            entry.path().string() + " " + to_string(k->isa));
     }
     for (const auto& entry : std::filesystem::directory_iterator(data / "scenes")) {
       if (!is_scene_directory(entry.path())) continue;
       const Scene scene = read_scene(entry.path());
       const MeshView mesh{scene.positions_t0, scene.positions_t1, scene.faces};
-      same(mesh_ccd(mesh, scene.candidates, scalar), mesh_ccd(mesh, scene.candidates, vector),
+      same(lab::mesh_ccd(mesh, scene.candidates, scalar, stages),
+           lab::mesh_ccd(mesh, scene.candidates, vector, stages),
            entry.path().string() + " " + to_string(k->isa));
     }
   }

@@ -355,11 +355,12 @@ py::object field_view(const Result& result, const std::vector<Record>& records, 
   return view_of(result.storage, py::dtype::of<Field>(), base + offset, records.size(), sizeof(Record));
 }
 
-// Counters::max_query_seconds is left out: it needs Options::time_queries,
-// which the module does not take, and would always read 0.
+// Counters' times are left out: they need Options::time_queries, which the
+// module does not take, and would always read 0.
 py::dict counters_dict(const Counters& c) {
   return py::dict("candidates"_a = c.candidates, "culled"_a = c.culled, "culled_by_sign"_a = c.culled_by_sign,
-                  "culled_by_separation"_a = c.culled_by_separation, "solved"_a = c.solved, "hits"_a = c.hits,
+                  "culled_by_separation"_a = c.culled_by_separation, "culled_by_pieces"_a = c.culled_by_pieces,
+                  "culled_by_swept_box"_a = c.culled_by_swept_box, "solved"_a = c.solved, "hits"_a = c.hits,
                   "undecided"_a = c.undecided, "invalid"_a = c.invalid, "exact_escalations"_a = c.exact_escalations);
 }
 

@@ -159,8 +159,9 @@ def test_one_query_calls_take_integer_coordinates_and_check_their_size():
 def test_counters_add_up(scene):
     x0, x1, faces, _, lists = scene
     c = batchccd.mesh_ccd(x0, x1, faces, **lists).counters
-    assert set(c) == {"candidates", "culled", "culled_by_sign", "culled_by_separation", "solved", "hits",
-                      "undecided", "invalid", "exact_escalations"}
+    assert set(c) == {"candidates", "culled", "culled_by_sign", "culled_by_separation", "culled_by_pieces",
+                      "culled_by_swept_box", "solved", "hits", "undecided", "invalid", "exact_escalations"}
     assert all(isinstance(v, int) for v in c.values())
     assert c["candidates"] == c["culled"] + c["solved"] and c["culled"] > 0
-    assert c["culled"] == c["culled_by_sign"] + c["culled_by_separation"]
+    assert c["culled"] == (c["culled_by_sign"] + c["culled_by_separation"] + c["culled_by_pieces"]
+                           + c["culled_by_swept_box"])

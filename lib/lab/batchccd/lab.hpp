@@ -43,6 +43,14 @@ struct Settings {
   // Tang et al. 2010.
   bool sign_filter_subdivision = true;
   bool separation_filter = true;  // distance at t0 against the largest displacement
+  // With the separation filter, what both keep is filtered again over 2, 4
+  // or 8 equal pieces of the step: culled when each piece is free by either
+  // filter there (docs/design.md §4a). 1 (or any other value): the whole
+  // step only.
+  int filter_pieces = 4;
+  // Then the swept boxes of the two primitives (their points at t0 and t1):
+  // apart along an axis, no contact. Redundant after a tight broad phase.
+  bool swept_box_filter = false;
 };
 
 // A mode or a baseline: what the tools run side by side.

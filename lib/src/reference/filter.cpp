@@ -7,6 +7,7 @@
 
 #include "reference/bernstein.hpp"
 #include "reference/error_bounds.hpp"
+#include "reference/piecewise_filter.hpp"
 #include "reference/separation_filter.hpp"
 #include "reference/sign_filter.hpp"
 
@@ -68,6 +69,26 @@ static_assert(kSeparationDirectLowest >= kDirectLowest && kSeparationDirectHighe
 
 namespace {
 
+// The stages after the whole-step filters (piecewise_filter.hpp), for a
+// query in the separation filter's direct frame: the pieces for what the
+// separation filter (which left its bounds in `measured`) kept, then the
+// swept boxes. `separation` as in that frame's units.
+FilterVerdict later_stages(Kind kind, const DirectFrame& direct, const SeparationMeasures<double>& measured,
+                           const FilterSettings& settings, double separation, FilterVerdict verdict) {
+  if (verdict.culled()) return verdict;
+  if (settings.separation && settings.pieces > 1) {
+    const SeparationErrorModel error = separation_error(0.0, settings.certified);
+    const SignTest<double> test =
+        sign_test(direct.relative, direct.largest, direct_coefficient_error().floor, settings.certified);
+    verdict.pieces = piecewise_culls(settings.pieces, kind, direct.relative, measured, error.relative, error.floor,
+                                     settings.sign ? &test : nullptr, direct.largest, settings.certified,
+                                     settings.within, separation);
+  }
+  if (settings.swept_box && !verdict.pieces)
+    verdict.swept_box = swept_boxes_apart(kind, direct.relative, direct.overall, settings.within, separation);
+  return verdict;
+}
+
 // run_filters for a call with separations: the same frames, the filters of
 // docs/design.md §11.
 FilterVerdict run_filters_within(Kind kind, const Query& query, const FilterSettings& settings) {
@@ -79,13 +100,16 @@ FilterVerdict run_filters_within(Kind kind, const Query& query, const FilterSett
     verdict.sign = plane_distance_culls(kind, direct.relative, direct.largest, direct_coefficient_error().floor,
                                         settings.certified, separation);
   const bool separation_due = settings.separation && !verdict.sign;
-  if (separation_due && direct.within(kSeparationDirectLowest, kSeparationDirectHighest)) {
+  const bool later = direct.within(kSeparationDirectLowest, kSeparationDirectHighest);
+  SeparationMeasures<double> measured{};
+  if (separation_due && later) {
     const SeparationErrorModel error = separation_error(0.0, settings.certified);
     verdict.separation =
-        separation_filter_culls_within(kind, direct.relative, error.relative, error.floor, separation);
-    return verdict;
+        separation_filter_culls_within(kind, direct.relative, error.relative, error.floor, separation, &measured);
+    return later_stages(kind, direct, measured, settings, separation, verdict);
   }
-  if (!sign_scaled && !separation_due) return verdict;
+  if (!sign_scaled && !separation_due)
+    return later ? later_stages(kind, direct, measured, settings, separation, verdict) : verdict;
   const ScaledQuery scaled = scale_query(kind, query);
   if (!scaled.finite || scaled.coincident) return verdict;  // for the solver's own checks
   const double scaled_separation = to_scaled_length(scaled, separation);
@@ -120,12 +144,15 @@ FilterVerdict run_filters(Kind kind, const Query& query, const FilterSettings& s
     verdict.sign = sign_filter_culls(direct.relative, direct.largest, direct_coefficient_error().floor,
                                      settings.certified, settings.subdivide);
   const bool separation_due = settings.separation && !verdict.sign;
-  if (separation_due && direct.within(kSeparationDirectLowest, kSeparationDirectHighest)) {
+  const bool later = direct.within(kSeparationDirectLowest, kSeparationDirectHighest);
+  SeparationMeasures<double> measured{};
+  if (separation_due && later) {
     const SeparationErrorModel error = separation_error(0.0, settings.certified);
-    verdict.separation = separation_filter_culls(kind, direct.relative, error.relative, error.floor);
-    return verdict;
+    verdict.separation = separation_filter_culls(kind, direct.relative, error.relative, error.floor, &measured);
+    return later_stages(kind, direct, measured, settings, 0.0, verdict);
   }
-  if (!sign_scaled && !separation_due) return verdict;
+  if (!sign_scaled && !separation_due)
+    return later ? later_stages(kind, direct, measured, settings, 0.0, verdict) : verdict;
   const ScaledQuery scaled = scale_query(kind, query);
   if (!scaled.finite || scaled.coincident) return verdict;  // for the solver's own checks
   if (sign_scaled) verdict.sign = sign_filter_culls(scaled, settings.certified, settings.subdivide);

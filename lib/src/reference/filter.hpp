@@ -15,6 +15,11 @@ struct FilterSettings {
   bool sign = true;        // the Bernstein sign test on the coplanarity cubic
   bool subdivide = true;   // its V = 2 step (false: DNF-style, the four signs only)
   bool separation = true;  // distance at t = 0 against the largest displacement
+  // With the separation filter: both filters over 2, 4 or 8 equal pieces of
+  // the step for what they keep (1: the whole step only); then the swept
+  // boxes (docs/design.md §4a).
+  int pieces = 4;
+  bool swept_box = false;
   // A call with minimum separations (docs/design.md §11) filters every candidate
   // for one, 0 included: the sign filter as the distance to the plane or
   // line pair (no halves), the separation filter with the separation added.
@@ -28,16 +33,21 @@ struct FilterSettings {
 
 // The filters a call asks for (the cubic baseline runs none: callers skip them).
 inline FilterSettings filter_settings(const Options& options, const lab::Settings& lab) {
+  const int asked = lab.filter_pieces;
+  const int pieces = asked == 2 || asked == 4 || asked == 8 ? asked : 1;
   return {decider_of(options, lab) != Decider::fast, lab.sign_filter, lab.sign_filter_subdivision,
-          lab.separation_filter, options.min_distance > 0, options.min_distance};
+          lab.separation_filter, pieces, lab.swept_box_filter, options.min_distance > 0, options.min_distance};
 }
 
 // What each filter said of one query. The sign filter runs first; the
-// separation filter only sees what it keeps (at most one of the two culls).
+// separation filter only sees what it keeps, the pieces what both keep,
+// the swept boxes what the pieces keep (at most one culls).
 struct FilterVerdict {
   bool sign = false;
   bool separation = false;
-  bool culled() const { return sign || separation; }
+  bool pieces = false;
+  bool swept_box = false;
+  bool culled() const { return sign || separation || pieces || swept_box; }
 };
 
 // The filters over [0, 1] for one query (any input: a non-finite or

@@ -101,10 +101,11 @@ Bounded<T> bounded_dot(const Vector3<T>& a, const Vector3<T>& a_magnitude, const
 }
 
 // Squared distance at t = 0, lower bound: vertex x4 against triangle (0, x2, x3).
+// bm, cm, pm: componentwise bounds of |b|, |c|, |p| that the inputs' errors
+// are measured against (their absolute values, for differences of doubles).
 template <class T>
-T vertex_face_distance2(const Vector3<T>& b, const Vector3<T>& c, const Vector3<T>& p, T relative,
-                        T floor) {
-  const Vector3<T> bm = absolute(b), cm = absolute(c), pm = absolute(p);
+T vertex_face_distance2(const Vector3<T>& b, const Vector3<T>& bm, const Vector3<T>& c, const Vector3<T>& cm,
+                        const Vector3<T>& p, const Vector3<T>& pm, T relative, T floor) {
   const Vector3<T> zero{T(0), T(0), T(0)};
   const Vector3<T> n = cross(b, c), nm = cross_magnitude(bm, cm);
   const Bounded<T> n2 = bounded_dot(n, nm, n, nm);
@@ -112,11 +113,13 @@ T vertex_face_distance2(const Vector3<T>& b, const Vector3<T>& c, const Vector3<
   // Edge k from start to end; m = edge x n points away from the triangle.
   const Vector3<T>* starts[3] = {&zero, &b, &c};
   const Vector3<T>* ends[3] = {&b, &c, &zero};
+  const Vector3<T>* start_magnitudes[3] = {&zero, &bm, &cm};
+  const Vector3<T>* end_magnitudes[3] = {&bm, &cm, &zero};
   T in_plane(0);
   for (int k = 0; k < 3; ++k) {
     const Vector3<T>& start = *starts[k];
-    const Vector3<T> start_magnitude = absolute(start);
-    const Vector3<T> edge = *ends[k] - start, edge_magnitude = absolute(*ends[k]) + start_magnitude;
+    const Vector3<T>& start_magnitude = *start_magnitudes[k];
+    const Vector3<T> edge = *ends[k] - start, edge_magnitude = *end_magnitudes[k] + start_magnitude;
     const Vector3<T> m = cross(edge, n), mm = cross_magnitude(edge_magnitude, nm);
     const Bounded<T> outside = bounded_dot(p - start, pm + start_magnitude, m, mm);
     in_plane = max_of(in_plane, squared_ratio_lower_bound(outside, bounded_dot(m, mm, m, mm),
@@ -124,12 +127,16 @@ T vertex_face_distance2(const Vector3<T>& b, const Vector3<T>& c, const Vector3<
   }
   return plane + in_plane;
 }
+template <class T>
+T vertex_face_distance2(const Vector3<T>& b, const Vector3<T>& c, const Vector3<T>& p, T relative,
+                        T floor) {
+  return vertex_face_distance2(b, absolute(b), c, absolute(c), p, absolute(p), relative, floor);
+}
 
 // Squared distance at t = 0, lower bound: edge (0, x2) against edge (x3, x4).
 template <class T>
-T edge_edge_distance2(const Vector3<T>& a1, const Vector3<T>& b0, const Vector3<T>& b1, T relative,
-                      T floor) {
-  const Vector3<T> a1m = absolute(a1), b0m = absolute(b0), b1m = absolute(b1);
+T edge_edge_distance2(const Vector3<T>& a1, const Vector3<T>& a1m, const Vector3<T>& b0, const Vector3<T>& b0m,
+                      const Vector3<T>& b1, const Vector3<T>& b1m, T relative, T floor) {
   const Vector3<T> db = b1 - b0, dbm = b1m + b0m;
   const Vector3<T> n = cross(a1, db), nm = cross_magnitude(a1m, dbm);
   const T planes = squared_ratio_lower_bound(bounded_dot(n, nm, b0, b0m), bounded_dot(n, nm, n, nm),
@@ -145,6 +152,11 @@ T edge_edge_distance2(const Vector3<T>& a1, const Vector3<T>& b0, const Vector3<
     in_plane = max_of(in_plane, squared_gap_lower_bound(a, b, bounded_dot(v, vm, v, vm), relative, floor));
   }
   return planes + in_plane;
+}
+template <class T>
+T edge_edge_distance2(const Vector3<T>& a1, const Vector3<T>& b0, const Vector3<T>& b1, T relative,
+                      T floor) {
+  return edge_edge_distance2(a1, absolute(a1), b0, absolute(b0), b1, absolute(b1), relative, floor);
 }
 
 // Squared largest relative displacement over the step, upper bound. moved[i]
@@ -193,9 +205,26 @@ T largest_displacement2(Kind kind, const Vector3<T> (&relative)[3][2], T error_r
   return largest_displacement2(kind, moved, moved_magnitude, error_relative, floor);
 }
 
+// The bounds the filter computed (squares: m^2 from above, d0^2 and d1^2
+// from below), for the filter over pieces of the step (piecewise_filter.hpp).
+template <class T>
+struct SeparationMeasures {
+  T displacement2, start2, end2;
+};
+
+// The same bounds computed alone, as the filters compute them.
+template <class T>
+SeparationMeasures<T> separation_measures(Kind kind, const Vector3<T> (&relative)[3][2], T error_relative, T floor) {
+  return {largest_displacement2(kind, relative, error_relative, floor),
+          distance2_at(kind, relative, 0, error_relative, floor),
+          distance2_at(kind, relative, 1, error_relative, floor)};
+}
+
+// `measured`, if given, receives the bounds whenever the filter computed
+// them all, which it does unless it culls every lane at d0 > m alone.
 template <class T>
 auto separation_filter_culls(Kind kind, const Vector3<T> (&relative)[3][2], T error_relative,
-                             T floor) {
+                             T floor, SeparationMeasures<T>* measured = nullptr) {
   using std::sqrt;
   const T displacement2 = largest_displacement2(kind, relative, error_relative, floor);
   const T start2 = distance2_at(kind, relative, 0, error_relative, floor);
@@ -205,6 +234,7 @@ auto separation_filter_culls(Kind kind, const Vector3<T> (&relative)[3][2], T er
   const auto apart_at_start = start2 * T(SeparationErrors::shrink) > displacement2;
   if (all_of(apart_at_start)) return apart_at_start;
   const T end2 = distance2_at(kind, relative, 1, error_relative, floor);
+  if (measured != nullptr) *measured = {displacement2, start2, end2};
   // Lower bounds throughout: each rounding (product, root, sums) costs at
   // most u, and the shrink factor takes 8 u off.
   const T sum2 = (start2 + end2 + T(2) * sqrt(start2 * end2)) * T(SeparationErrors::shrink);
@@ -218,14 +248,18 @@ auto separation_filter_culls(Kind kind, const Vector3<T> (&relative)[3][2], T er
 // each root, sum and product.
 template <class T>
 auto separation_filter_culls_within(Kind kind, const Vector3<T> (&relative)[3][2], T error_relative, T floor,
-                                    T separation) {
+                                    T separation, SeparationMeasures<T>* measured = nullptr) {
   using std::sqrt;
   const T shrink(SeparationErrors::shrink), grow(SeparationErrors::grow);
-  const T motion = sqrt(largest_displacement2(kind, relative, error_relative, floor)) * grow;
-  const T start = sqrt(distance2_at(kind, relative, 0, error_relative, floor)) * shrink;
+  const T displacement2 = largest_displacement2(kind, relative, error_relative, floor);
+  const T start2 = distance2_at(kind, relative, 0, error_relative, floor);
+  const T motion = sqrt(displacement2) * grow;
+  const T start = sqrt(start2) * shrink;
   const auto apart_at_start = start * shrink > (motion + separation) * grow;
   if (all_of(apart_at_start)) return apart_at_start;
-  const T end = sqrt(distance2_at(kind, relative, 1, error_relative, floor)) * shrink;
+  const T end2 = distance2_at(kind, relative, 1, error_relative, floor);
+  if (measured != nullptr) *measured = {displacement2, start2, end2};
+  const T end = sqrt(end2) * shrink;
   // Either test alone rules a contact out (neither implies the other).
   using Verdict = decltype(apart_at_start);  // bool, or a mask of lanes
   return Verdict(apart_at_start | ((start + end) * shrink > (motion + T(2) * separation) * grow));

@@ -92,12 +92,12 @@ auto sign_filter_culls(const Vector3<T> (&relative)[3][2], const T (&largest)[3]
 // vanishes so does d, and nothing is culled.) With s = 0 it is the whole
 // interval's sign test. Inputs as sign_test's, s in the same frame; written
 // once over T for the scalar path and the lanes.
+// The bound s max |n_j|_1 that |d| must exceed, grown for the rounding of
+// the thresholds made from it; test.floor is the coefficients' floor.
 template <class T>
-auto plane_distance_culls(Kind kind, const Vector3<T> (&r)[3][2], const T (&largest)[3][2],
-                          T coefficient_floor, bool certified, T separation,
-                          double coefficient_relative = coefficient_error(0.0).relative) {
+T plane_reach(Kind kind, const Vector3<T> (&r)[3][2], const T (&largest)[3][2], const SignTest<T>& test,
+              bool certified, T separation) {
   using std::abs;
-  const SignTest<T> test = sign_test(r, largest, coefficient_floor, certified, coefficient_relative);
   // n = a x b, both linear: VF a = x21, b = x31; EE a = x21, b = x43.
   const bool vertex_face = kind == Kind::vertex_face;
   const Vector3<T> b0 = vertex_face ? r[1][0] : r[2][0] - r[1][0];
@@ -119,9 +119,17 @@ auto plane_distance_culls(Kind kind, const Vector3<T> (&r)[3][2], const T (&larg
     const T l1 = abs(control[j].x) + abs(control[j].y) + abs(control[j].z) + T(3) * component_error[j];
     largest_normal = max_of(largest_normal, j == 1 ? T(0.5) * l1 : l1);
   }
-  // The coefficients are the Bernstein ones times (1, 3, 3, 1); the
-  // threshold's sums and products round by less than 8 u.
-  const T reach = separation * largest_normal * T(1 + 8 * kUnitRoundoff);
+  // The threshold's sums and products round by less than 8 u.
+  return separation * largest_normal * T(1 + 8 * kUnitRoundoff);
+}
+
+template <class T>
+auto plane_distance_culls(Kind kind, const Vector3<T> (&r)[3][2], const T (&largest)[3][2],
+                          T coefficient_floor, bool certified, T separation,
+                          double coefficient_relative = coefficient_error(0.0).relative) {
+  const SignTest<T> test = sign_test(r, largest, coefficient_floor, certified, coefficient_relative);
+  const T reach = plane_reach(kind, r, largest, test, certified, separation);
+  // The coefficients are the Bernstein ones times (1, 3, 3, 1).
   const T weight[4] = {T(1), T(3), T(3), T(1)};
   auto positive = test.cubic.coefficient[0] > reach + test.relative * test.cubic.magnitude[0] + test.floor;
   auto negative = test.cubic.coefficient[0] < -(reach + test.relative * test.cubic.magnitude[0] + test.floor);
