@@ -98,7 +98,8 @@ void MeshCcdOnDenseList(benchmark::State& state, const std::string& name, double
   state.counters["candidates"] = static_cast<double>(c.candidates);
 }
 
-// Where the time goes, per method at no separation: each mode with every
+// Where the time goes, per method at no separation (and conservative mode at
+// a separation of 1e-3 mean edge lengths): each mode with every
 // query timed (Options::time_queries; two clock reads a survivor, so these
 // rows run a little slower than the ones above) and the unfiltered cubic
 // baseline, in the same run so that ratios between them mean something.
@@ -106,7 +107,7 @@ void MeshCcdOnDenseList(benchmark::State& state, const std::string& name, double
 // exact stage included), and the shares of the call's time spent by the
 // filters (and scheduling: the rest), the scalar path and, within it, the
 // queries exact arithmetic settled.
-void MethodOnDenseList(benchmark::State& state, const std::string& name, lab::Method method) {
+void MethodOnDenseList(benchmark::State& state, const std::string& name, lab::Method method, double separation) {
   const DenseList* list = dense_list(name);
   if (list == nullptr) {
     state.SkipWithError("../shared/data/scenes is absent");
@@ -117,6 +118,7 @@ void MethodOnDenseList(benchmark::State& state, const std::string& name, lab::Me
   options.per_candidate_results = false;
   options.hit_list = true;
   options.time_queries = method.baseline == lab::Baseline::none;
+  options.min_distance = separation * list->mean_edge_length;
   const MeshView view{list->scene.positions_t0, list->scene.positions_t1, list->scene.faces};
   BatchResult result;
   lab::mesh_ccd(view, list->candidates, MinDistances{}, options, method.settings(), result);
@@ -153,9 +155,12 @@ const bool registered = [] {
             ->Unit(benchmark::kMillisecond)
             ->UseRealTime();
   for (const char* name : kSceneNames)
-    for (const lab::Method method : {lab::kConservative, lab::kExact, lab::kCubic})
-      benchmark::RegisterBenchmark(("MethodOnDenseList/" + std::string(name) + "/" + to_string(method)).c_str(),
-                                   MethodOnDenseList, std::string(name), method)
+    for (const auto& [method, separation] : {std::pair{lab::kConservative, 0.0}, std::pair{lab::kExact, 0.0},
+                                             std::pair{lab::kCubic, 0.0}, std::pair{lab::kConservative, 1e-3}})
+      benchmark::RegisterBenchmark(("MethodOnDenseList/" + std::string(name) + "/" + to_string(method) +
+                                    (separation > 0 ? "/min_distance_0.001" : ""))
+                                       .c_str(),
+                                   MethodOnDenseList, std::string(name), method, separation)
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime();
   return true;
