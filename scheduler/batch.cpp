@@ -171,6 +171,24 @@ void sort_hits(BatchResult& batch) {
 
 }  // namespace
 
+Counters& Counters::operator+=(const Counters& other) {
+  candidates += other.candidates;
+  culled += other.culled;
+  culled_by_sign += other.culled_by_sign;
+  culled_by_separation += other.culled_by_separation;
+  culled_by_pieces += other.culled_by_pieces;
+  culled_by_swept_box += other.culled_by_swept_box;
+  solved += other.solved;
+  hits += other.hits;
+  undecided += other.undecided;
+  invalid += other.invalid;
+  exact_escalations += other.exact_escalations;
+  max_query_seconds = std::max(max_query_seconds, other.max_query_seconds);
+  solved_seconds += other.solved_seconds;
+  escalated_seconds += other.escalated_seconds;
+  return *this;
+}
+
 Isa resolve_isa(Isa requested) { return simd::filter_kernels(requested).isa; }
 
 std::vector<Isa> available_isas() {

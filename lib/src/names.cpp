@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "batchccd/batch.hpp"
 #include "batchccd/lab.hpp"
 
 namespace batchccd {
@@ -51,23 +50,5 @@ const char* lab::to_string(const Method& method) {
 std::optional<Kind> kind_from_string(std::string_view name) { return value_in(kind_names(), name); }
 std::optional<Mode> mode_from_string(std::string_view name) { return value_in(mode_names(), name); }
 std::optional<Isa> isa_from_string(std::string_view name) { return value_in(isa_names(), name); }
-
-Counters& Counters::operator+=(const Counters& other) {
-  candidates += other.candidates;
-  culled += other.culled;
-  culled_by_sign += other.culled_by_sign;
-  culled_by_separation += other.culled_by_separation;
-  culled_by_pieces += other.culled_by_pieces;
-  culled_by_swept_box += other.culled_by_swept_box;
-  solved += other.solved;
-  hits += other.hits;
-  undecided += other.undecided;
-  invalid += other.invalid;
-  exact_escalations += other.exact_escalations;
-  max_query_seconds = std::max(max_query_seconds, other.max_query_seconds);
-  solved_seconds += other.solved_seconds;
-  escalated_seconds += other.escalated_seconds;
-  return *this;
-}
 
 }  // namespace batchccd
