@@ -13,6 +13,7 @@
 
 #include "batchccd/batchccd.hpp"
 #include "extreme_suite.hpp"
+#include "shared_data_inputs.hpp"
 
 namespace {
 
@@ -46,20 +47,12 @@ std::vector<Input> inputs(const fs::path& data) {
   std::vector<Input> all;
   for (scenes::ExtremeCategory& category : scenes::extreme_categories())
     all.push_back({"extreme: " + category.name, category.kind, std::move(category.queries)});
-  std::vector<fs::path> files, scene_directories;
-  if (fs::is_directory(data / "sample-queries"))
-    for (const auto& entry : fs::recursive_directory_iterator(data / "sample-queries"))
-      if (entry.path().extension() == ".csv" && kind_from_path(entry.path())) files.push_back(entry.path());
-  if (fs::is_directory(data / "scenes"))
-    for (const auto& entry : fs::directory_iterator(data / "scenes"))
-      if (is_scene_directory(entry.path())) scene_directories.push_back(entry.path());
-  std::sort(files.begin(), files.end());
-  std::sort(scene_directories.begin(), scene_directories.end());
-  for (const fs::path& file : files) {
+  const scenes::SharedDataInputs shared = scenes::shared_data_inputs(data);
+  for (const fs::path& file : shared.query_files) {
     const Kind kind = *kind_from_path(file);
     all.push_back({fs::relative(file, data).string(), kind, read_query_csv(file, kind).queries});
   }
-  for (const fs::path& directory : scene_directories) {
+  for (const fs::path& directory : shared.scenes) {
     const Scene scene = read_scene(directory);
     const MeshView mesh{scene.positions_t0, scene.positions_t1, scene.faces};
     Input vertex_face{fs::relative(directory, data).string(), Kind::vertex_face, {}};

@@ -15,6 +15,7 @@
 
 #include "batchccd/batchccd.hpp"
 #include "extreme_suite.hpp"
+#include "shared_data_inputs.hpp"
 
 namespace {
 
@@ -101,25 +102,16 @@ Options with_mode(Mode mode) {
 int main(int argc, char** argv) {
   const fs::path data = argc > 1 ? fs::path(argv[1]) : fs::path(BATCHCCD_SHARED_DATA);
   const double toi_tolerance = Options{}.toi_tolerance;
-  std::vector<fs::path> files, scenes;
-  if (fs::is_directory(data / "sample-queries"))
-    for (const auto& entry : fs::recursive_directory_iterator(data / "sample-queries"))
-      if (entry.path().extension() == ".csv") files.push_back(entry.path());
-  if (fs::is_directory(data / "scenes"))
-    for (const auto& entry : fs::directory_iterator(data / "scenes"))
-      if (is_scene_directory(entry.path())) scenes.push_back(entry.path());
-  std::sort(files.begin(), files.end());
-  std::sort(scenes.begin(), scenes.end());
-  for (const fs::path& file : files) {
+  const scenes::SharedDataInputs shared = scenes::shared_data_inputs(data);
+  for (const fs::path& file : shared.query_files) {
     const std::optional<Kind> kind = kind_from_path(file);
-    if (!kind) continue;
     const QueryFile queries = read_query_csv(file, *kind);
     const BatchResult exact = batch_ccd(*kind, queries.queries, with_mode(Mode::exact));
     const auto [conservative, seconds] =
         timed([&] { return batch_ccd(*kind, queries.queries, with_mode(Mode::conservative)); });
     compare(fs::relative(file, data).string(), *kind, exact.results, conservative, seconds, toi_tolerance);
   }
-  for (const fs::path& directory : scenes) {
+  for (const fs::path& directory : shared.scenes) {
     const Scene scene = read_scene(directory);
     const MeshView mesh{scene.positions_t0, scene.positions_t1, scene.faces};
     for (const Kind kind : {Kind::vertex_face, Kind::edge_edge}) {
