@@ -25,6 +25,7 @@ constexpr double kSmallestWidth = 0x1p-45;
 // then (when the cubic certainly has a root there) narrow on its signs.
 constexpr double kWideInterval = 0x1p-8;
 constexpr std::int64_t kWideBudget = 16;
+constexpr std::int64_t kWideDistanceBudget = 1;  // with a minimum separation
 
 struct Interval {
   double low, high;
@@ -190,7 +191,9 @@ class InclusionSolver {
       return SolverOutcome{true, advanced_, false, settings_.certified};
     if (time.high <= advanced_ || apart_over(ends)) return std::nullopt;
     const bool settled = time.width() <= settings_.toi_tolerance || !settings_.need_toi;
-    const std::int64_t budget = time.width() > kWideInterval ? kWideBudget : settings_.max_iterations;
+    // A wide interval gets one box: where conservative advancement stalled,
+    // its boxes seldom settle anything before time is split.
+    const std::int64_t budget = time.width() > kWideInterval ? kWideDistanceBudget : settings_.max_iterations;
     const Search search = search_parameters(ends, budget, settings_.tolerance);
     if (search == Search::excluded) return std::nullopt;
     // Every time before `start` is free of contact.
