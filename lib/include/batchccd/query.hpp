@@ -51,9 +51,8 @@ Query make_query(Kind kind, std::span<const Vec3> points_t0, std::span<const Vec
 //   describes (status ok): a triangle with repeated or collinear corners is a
 //   segment or a point, an edge with equal endpoints a point. A vertex that
 //   is a corner of its own triangle, or two edges sharing an endpoint (mesh
-//   neighbours), touch throughout: a hit at toi = 0 (conservative and exact
-//   modes; fast and cubic may miss it as they may miss any contact). Broad
-//   phases usually leave such pairs out.
+//   neighbours), touch throughout: a hit at toi = 0. Broad phases usually
+//   leave such pairs out.
 enum class Status {
   ok,             // evaluated; hit and toi are meaningful
   invalid_input,  // a coordinate is NaN or infinite: not evaluated, hit is true
@@ -67,9 +66,8 @@ struct QueryResult {
   // by default) at some t in [0, Options::tmax], as far as Options::mode
   // promises.
   bool hit = false;
-  // Time of impact in [0, tmax], +inf when there is none. Conservative and exact modes never report it later than the
-  // first contact (a lower bound); fast and cubic promise nothing of it
-  // (Mode in options.hpp).
+  // Time of impact in [0, tmax], +inf when there is none. Never later than
+  // the first contact (a lower bound; how close, Mode in options.hpp).
   double toi = std::numeric_limits<double>::infinity();
   Status status = Status::ok;
 };
