@@ -7,9 +7,10 @@
 //
 //   build/bench/batchccd_dense_lists_benchmark [--benchmark_filter=REGEX]
 //
-// Each list with the default filter stages (4 pieces), then with the whole
-// step only (pieces_1, the filters of 0.3.0), 2 and 8 pieces, and 4 pieces
-// with the swept boxes. Counters per call: candidates/s (items_per_second),
+// Each list with the default filter stages (swept boxes first, 4 pieces
+// last), then without the swept boxes (no_swept_box, the stages of 0.4.0),
+// without them and the pieces (no_swept_box/pieces_1, those of 0.3.0), and
+// with 2 and 8 pieces. Counters per call: candidates/s (items_per_second),
 // the share culled by each lane filter stage, the survivors' share and the
 // hits. Ratios between separations are only meaningful within one run.
 // MethodOnDenseList: the modes and the cubic baseline at no separation,
@@ -52,18 +53,19 @@ const DenseList* dense_list(const std::string& name) {
   return &lists.emplace(name, std::move(list)).first->second;
 }
 
-// The filter stages after the whole-step filters (lab::Settings::filter_pieces,
-// swept_box_filter): the default, and the variants to compare it with.
+// The filter stages around the whole-step filters (lab::Settings::swept_box_filter
+// before them, filter_pieces after): the default, and the variants to
+// compare it with.
 struct Stages {
   const char* name;  // "" for the default
   int pieces;
   bool swept_box;
 };
 constexpr Stages kStages[] = {{"", lab::Settings{}.filter_pieces, lab::Settings{}.swept_box_filter},
-                              {"/pieces_1", 1, false},
-                              {"/pieces_2", 2, false},
-                              {"/pieces_8", 8, false},
-                              {"/pieces_4/swept_box", 4, true}};
+                              {"/no_swept_box", 4, false},
+                              {"/no_swept_box/pieces_1", 1, false},
+                              {"/pieces_2", 2, true},
+                              {"/pieces_8", 8, true}};
 
 void MeshCcdOnDenseList(benchmark::State& state, const std::string& name, double separation, Stages stages) {
   const DenseList* list = dense_list(name);

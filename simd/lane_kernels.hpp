@@ -23,6 +23,7 @@
 #include "reference/separation_filter.hpp"
 #include "reference/scaled_query.hpp"
 #include "reference/sign_filter.hpp"
+#include "reference/swept_box_filter.hpp"
 #include "simd/filter.hpp"
 #include "simd/sources.hpp"
 
@@ -481,38 +482,49 @@ typename Lanes<Arch>::Double lane_separations(const reference::FilterSettings& s
   return Double::load_aligned(values);
 }
 
-// The sign filter's verdicts in the scaled frame (reference::run_filters):
-// bit k set when lane k is certainly free of contact there. Rare, so out of
-// line, where it costs the common path no registers; it loads the
+// What the first pass culls, bit k for lane k.
+struct FirstCulls {
+  std::uint32_t swept_box = 0;  // by the swept boxes
+  std::uint32_t sign = 0;       // by the sign filter, of the lanes the boxes keep
+};
+
+// The first pass's verdicts in the scaled frame (reference::run_filters):
+// the swept boxes, then the sign filter, whole step and halves. Rare, so
+// out of line, where it costs the common path no registers; it loads the
 // positions again.
 template <class Arch, class Source>
-[[gnu::noinline, gnu::flatten]] std::uint32_t sign_culled_in_scaled_frame(
+[[gnu::noinline, gnu::flatten]] FirstCulls first_culled_in_scaled_frame(
     const Source& source, const ListedGroup<Arch>& group, const reference::FilterSettings& settings) {
   using Double = typename Lanes<Arch>::Double;
+  using Mask = typename Lanes<Arch>::Mask;
   const ScaledFrame<Arch> frame(source, group);
   Double largest[3][2];
   for (int i = 0; i < 3; ++i)
     for (int tau = 0; tau < 2; ++tau)
       largest[i][tau] = Magnitudes<Arch>::largest(frame.relative[i][tau]);
+  const Double separation =
+      settings.within ? frame.scaled_length(lane_separations<Arch>(settings, group)) : Double(0.0);
+  FirstCulls culled;
+  if (settings.swept_box)
+    culled.swept_box = lane_bits<Arch>(
+        frame.evaluable & reference::swept_boxes_apart(source.kind, frame.relative, pairwise<6>(&largest[0][0], Magnitudes<Arch>::larger),
+                                                       settings.within, separation, frame.absolute_error));
+  if (!settings.sign) return culled;
   const Double floor = reference::coefficient_floor(frame.absolute_error);
-  if (settings.within) {
-    const Double separation = frame.scaled_length(lane_separations<Arch>(settings, group));
-    return lane_bits<Arch>(reference::plane_distance_culls(source.kind, frame.relative, largest, floor,
-                                                           settings.certified, separation) &
-                           frame.evaluable);
-  }
-  const auto culled =
-      reference::sign_filter_culls(frame.relative, largest, floor, settings.certified, settings.subdivide);
-  return lane_bits<Arch>(culled & frame.evaluable);
+  const Mask sign = settings.within ? Mask(reference::plane_distance_culls(source.kind, frame.relative, largest, floor,
+                                                                          settings.certified, separation))
+                                    : Mask(reference::sign_filter_culls(frame.relative, largest, floor,
+                                                                        settings.certified, settings.subdivide));
+  culled.sign = lane_bits<Arch>(sign & frame.evaluable) & ~culled.swept_box;
+  return culled;
 }
 
 // A consecutive group's list made in here, out of the common path (made
 // there, its values stayed live across the whole kernel, on the stack).
 template <class Arch, class Source>
-[[gnu::noinline]] std::uint32_t sign_culled_in_scaled_frame(const Source& source,
-                                                            const ConsecutiveGroup<Arch>& group,
-                                                            const reference::FilterSettings& settings) {
-  return sign_culled_in_scaled_frame<Arch>(source, listed(group), settings);
+[[gnu::noinline]] FirstCulls first_culled_in_scaled_frame(const Source& source, const ConsecutiveGroup<Arch>& group,
+                                                          const reference::FilterSettings& settings) {
+  return first_culled_in_scaled_frame<Arch>(source, listed(group), settings);
 }
 
 // The separation filter's, likewise.
@@ -536,35 +548,52 @@ template <class Arch, class Source>
 }
 
 // The first pass, over every candidate of a group (`count` <= lane count of
-// them in use): bit k set when the sign filter certainly (or,
-// uncertified, plainly) culls lane k on the whole interval. Lanes past count
-// are never culled. Frames as in reference::run_filters: direct where the
-// differences lie in its window; elsewhere (rare: only groups with such a
-// lane pay) the scaled frame's whole filter, halves included.
+// them in use): the swept boxes, then the sign filter certainly (or,
+// uncertified, plainly) on the whole interval. Lanes past count are never
+// culled. Frames as in reference::run_filters: direct where the differences
+// lie in its window; elsewhere (rare: only groups with such a lane pay) the
+// scaled frame's, the sign filter's halves included there.
 // Within: a call with separations (FilterSettings::within), the sign
 // filter as the distance to the plane or line pair.
 template <class Arch, bool within, class Source, class Group>
-[[gnu::flatten]] std::uint32_t whole_interval_culled_lanes(const Source& source, const Group& group,
-                                                           std::size_t count,
-                                                           const reference::FilterSettings& settings) {
+[[gnu::flatten]] FirstCulls whole_interval_culled_lanes(const Source& source, const Group& group, std::size_t count,
+                                                        const reference::FilterSettings& settings) {
   using Double = typename Lanes<Arch>::Double;
   const DirectDifferences<Arch> differences(source, group);
   const auto direct = differences.within(reference::kDirectLowest, reference::kDirectHighest);
   const std::uint32_t lanes_in_use = (1u << count) - 1;
-  const Double floor(reference::direct_coefficient_error().floor);
-  std::uint32_t culled;
-  if constexpr (within) {
-    culled = lane_bits<Arch>(direct & reference::plane_distance_culls(source.kind, differences.relative,
-                                                                      differences.largest, floor, settings.certified,
-                                                                      lane_separations<Arch>(settings, group)));
-  } else {
-    const auto test = reference::sign_test(differences.relative, differences.largest, floor, settings.certified);
-    culled = lane_bits<Arch>(direct & test.whole());
+  const Double separation = within ? lane_separations<Arch>(settings, group) : Double(0.0);
+  FirstCulls culled;
+  // A NaN may pass `direct` (Magnitudes): the boxes, which would not see
+  // it, ask for none.
+  if (settings.swept_box)
+    culled.swept_box =
+        lanes_in_use & lane_bits<Arch>(differences.within_without_nan(reference::kDirectLowest,
+                                                                      reference::kDirectHighest) &
+                                       reference::swept_boxes_apart(source.kind, differences.relative,
+                                                                    differences.overall, within, separation));
+  // On a padded list the boxes alone settle most groups: the sign test
+  // only where a lane is left.
+  if (settings.sign && culled.swept_box != lanes_in_use) {
+    const Double floor(reference::direct_coefficient_error().floor);
+    if constexpr (within) {
+      culled.sign = lane_bits<Arch>(direct & reference::plane_distance_culls(source.kind, differences.relative,
+                                                                             differences.largest, floor,
+                                                                             settings.certified, separation));
+    } else {
+      const auto test =
+          reference::sign_test(differences.relative, differences.largest, floor, settings.certified);
+      culled.sign = lane_bits<Arch>(direct & test.whole());
+    }
   }
   const std::uint32_t scaled_lanes = ~lane_bits<Arch>(direct) & lanes_in_use;
-  if (scaled_lanes != 0)
-    culled |= scaled_lanes & sign_culled_in_scaled_frame<Arch>(source, group, settings);
-  return culled & lanes_in_use;
+  if (scaled_lanes != 0) {
+    const FirstCulls scaled = first_culled_in_scaled_frame<Arch>(source, group, settings);
+    culled.swept_box |= scaled_lanes & scaled.swept_box;
+    culled.sign |= scaled_lanes & scaled.sign;
+  }
+  culled.sign &= lanes_in_use & ~culled.swept_box;
+  return culled;
 }
 
 // What the second pass culls, bit k for lane k.
@@ -609,47 +638,32 @@ template <class Arch, class Source>
   return culled;
 }
 
-// What the third pass culls, bit k for lane k.
-struct FinalCulls {
-  std::uint32_t pieces = 0;     // by both filters over pieces of the step
-  std::uint32_t swept_box = 0;  // by the swept boxes, of the lanes the pieces keep
-};
-
 // The third pass, over the second one's survivors, in the separation
-// filter's direct frame only: the pieces, then the swept boxes. A pass of
-// its own, in full lanes: run on the second pass's groups, nearly half of
+// filter's direct frame only: bit k set when the pieces cull lane k. A pass
+// of its own, in full lanes: run on the second pass's groups, nearly half of
 // them had a lane left to test (of eight), and paid for all eight. The
 // whole-step bounds are computed again, as the filters compute them.
 template <class Arch, class Source>
-[[gnu::flatten]] FinalCulls final_culled_lanes(const Source& source, const ListedGroup<Arch>& group,
-                                               std::size_t count, const reference::FilterSettings& settings) {
+[[gnu::flatten]] std::uint32_t pieces_culled_lanes(const Source& source, const ListedGroup<Arch>& group,
+                                                   std::size_t count, const reference::FilterSettings& settings) {
   using Double = typename Lanes<Arch>::Double;
   const DirectDifferences<Arch> differences(source, group);
   const std::uint32_t open = ((1u << count) - 1) &
                              lane_bits<Arch>(differences.within_without_nan(reference::kSeparationDirectLowest,
                                                                             reference::kSeparationDirectHighest));
-  FinalCulls culled;
-  if (open == 0) return culled;
+  if (open == 0) return 0;
   const Double separation = settings.within ? lane_separations<Arch>(settings, group) : Double(0.0);
-  if (settings.separation && settings.pieces > 1) {
-    const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
-    const reference::SeparationMeasures<Double> measured = reference::separation_measures(
-        source.kind, differences.relative, Double(error.relative), Double(error.floor));
-    reference::SignTest<Double> test{};
-    if (settings.sign)
-      test = reference::sign_test(differences.relative, differences.largest,
-                                  Double(reference::direct_coefficient_error().floor), settings.certified);
-    culled.pieces = open & lane_bits<Arch>(reference::piecewise_culls(
-                               settings.pieces, source.kind, differences.relative, measured, Double(error.relative),
-                               Double(error.floor), settings.sign ? &test : nullptr, differences.largest,
-                               settings.certified, settings.within, separation));
-  }
-  const std::uint32_t left = open & ~culled.pieces;
-  if (settings.swept_box && left != 0)
-    culled.swept_box = left & lane_bits<Arch>(reference::swept_boxes_apart(source.kind, differences.relative,
-                                                                          differences.overall, settings.within,
-                                                                          separation));
-  return culled;
+  const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
+  const reference::SeparationMeasures<Double> measured =
+      reference::separation_measures(source.kind, differences.relative, Double(error.relative), Double(error.floor));
+  reference::SignTest<Double> test{};
+  if (settings.sign)
+    test = reference::sign_test(differences.relative, differences.largest,
+                                Double(reference::direct_coefficient_error().floor), settings.certified);
+  return open & lane_bits<Arch>(reference::piecewise_culls(settings.pieces, source.kind, differences.relative,
+                                                           measured, Double(error.relative), Double(error.floor),
+                                                           settings.sign ? &test : nullptr, differences.largest,
+                                                           settings.certified, settings.within, separation));
 }
 
 // Candidates [first, first + count) checked for ids the mesh does not have
@@ -712,17 +726,19 @@ std::size_t filter_range_of(const Source& source, std::size_t begin, std::size_t
   for (std::size_t first = begin; first < end; first += lanes) {
     const std::size_t count = std::min(end - first, lanes);
     check_ids<Arch>(source, first, count);  // every candidate passes here first, whatever the settings
-    std::uint32_t culled = 0;
-    if (settings.sign && count == lanes) {
+    FirstCulls culls;
+    if ((settings.sign || settings.swept_box) && count == lanes) {
       const ConsecutiveGroup<Arch> group{static_cast<std::int64_t>(first)};
-      culled = whole_interval_culled_lanes<Arch, within>(source, group, count, settings);
-    } else if (settings.sign) {
+      culls = whole_interval_culled_lanes<Arch, within>(source, group, count, settings);
+    } else if (settings.sign || settings.swept_box) {
       ListedGroup<Arch> group;  // the last few; spare lanes repeat the last
       for (std::size_t j = 0; j < lanes; ++j)
         group.candidate[j] = static_cast<std::int64_t>(first + std::min(j, count - 1));
-      culled = whole_interval_culled_lanes<Arch, within>(source, group, count, settings);
+      culls = whole_interval_culled_lanes<Arch, within>(source, group, count, settings);
     }
-    counts.sign += static_cast<std::size_t>(__builtin_popcount(culled));
+    counts.swept_box += static_cast<std::size_t>(__builtin_popcount(culls.swept_box));
+    counts.sign += static_cast<std::size_t>(__builtin_popcount(culls.sign));
+    const std::uint32_t culled = culls.swept_box | culls.sign;
     const auto offset = static_cast<std::uint32_t>(first - begin);
     kept += compress<Arch>(~culled & ((1u << count) - 1), offset, survivors + kept);
   }
@@ -750,12 +766,11 @@ std::size_t filter_range_of(const Source& source, std::size_t begin, std::size_t
       counts.separation += static_cast<std::size_t>(__builtin_popcount(culled.separation));
       return culled.sign | culled.separation;
     });
-  if ((settings.separation && settings.pieces > 1) || settings.swept_box)
+  if (settings.separation && settings.pieces > 1)
     pass([&](const ListedGroup<Arch>& group, std::size_t count) {
-      const FinalCulls culled = final_culled_lanes<Arch>(source, group, count, settings);
-      counts.pieces += static_cast<std::size_t>(__builtin_popcount(culled.pieces));
-      counts.swept_box += static_cast<std::size_t>(__builtin_popcount(culled.swept_box));
-      return culled.pieces | culled.swept_box;
+      const std::uint32_t culled = pieces_culled_lanes<Arch>(source, group, count, settings);
+      counts.pieces += static_cast<std::size_t>(__builtin_popcount(culled));
+      return culled;
     });
   return kept;
 }

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "batchccd/batchccd.hpp"
+#include "batchccd/lab.hpp"
 #include "exact/exact_solver.hpp"
 #include "exact/polynomial.hpp"
 #include "exact/root_isolation.hpp"
@@ -155,6 +156,11 @@ Options exact_options(bool need_toi = true) {
 
 // true_toi: the exact first contact (nullopt: never touching). The whole of
 // exact mode and the exact stage alone must both get it.
+// Near misses such as those below pass by 2^-50, each along an axis: the swept boxes
+// (exact comparisons) cull them before any solver. Without the boxes they
+// reach the solvers.
+const lab::Settings kNoSweptBoxes{.swept_box_filter = false};
+
 void check_exact(Kind kind, const Query& q, std::optional<long double> true_toi) {
   const QueryResult r = query_ccd(kind, q, exact_options());
   EXPECT_EQ(r.status, Status::ok);
@@ -167,6 +173,7 @@ void check_exact(Kind kind, const Query& q, std::optional<long double> true_toi)
     EXPECT_EQ(r.toi, kInfinity);
   }
   EXPECT_EQ(query_ccd(kind, q, exact_options(false)).hit, true_toi.has_value());
+  EXPECT_EQ(lab::query_ccd(kind, q, exact_options(), kNoSweptBoxes).hit, true_toi.has_value()) << "solvers";
 
   const exact::ExactOutcome alone = exact::solve_exactly(kind, q, true);
   EXPECT_FALSE(alone.bound_reached);
@@ -184,14 +191,13 @@ void check_ee(const Query& q, std::optional<long double> true_toi) {
 }
 const std::optional<long double> kMiss = std::nullopt;
 
-// Whether conservative mode reports a contact (it may, for near misses).
 // Whether conservative mode's floating-point search alone (no exact stage
 // within its iterations) reports a contact: the near misses below are ones
 // it reports within tolerance, and exact mode must not.
 bool conservative_hit(Kind kind, const Query& q) {
   Options options;
   options.exact_stage_iterations = options.max_iterations;
-  return query_ccd(kind, q, options).hit;
+  return lab::query_ccd(kind, q, options, kNoSweptBoxes).hit;
 }
 
 // The right triangle x, y >= 0, x + y <= 4 in the plane z = 0.
@@ -535,14 +541,15 @@ TEST(ExactCounters, BatchCountsEscalationsAndTimesQueriesOnlyWhenAsked) {
       make(A, B, V(x, 0, 1), V(6, 0, 1), A, B, V(x, 0, -1), V(6, 0, -1)),    // near miss
   };
   Options options = exact_options();
-  BatchResult batch = batch_ccd(Kind::edge_edge, queries, options);
+  BatchResult batch = lab::batch_ccd(Kind::edge_edge, queries, options, kNoSweptBoxes);
+  EXPECT_EQ(batch_ccd(Kind::edge_edge, queries, options).counters.culled_by_swept_box, 1);
   EXPECT_EQ(batch.counters.hits, 1);
   EXPECT_EQ(batch.counters.exact_escalations, 1);
   EXPECT_EQ(batch.counters.max_query_seconds, 0.0);
   EXPECT_EQ(batch.counters.solved_seconds, 0.0);
   EXPECT_EQ(batch.counters.escalated_seconds, 0.0);
   options.time_queries = true;
-  batch = batch_ccd(Kind::edge_edge, queries, options);
+  batch = lab::batch_ccd(Kind::edge_edge, queries, options, kNoSweptBoxes);
   EXPECT_GT(batch.counters.max_query_seconds, 0.0);
   // Both queries are solved, one escalated: the sums bound the slowest.
   EXPECT_GE(batch.counters.solved_seconds, batch.counters.max_query_seconds);
@@ -550,11 +557,11 @@ TEST(ExactCounters, BatchCountsEscalationsAndTimesQueriesOnlyWhenAsked) {
   EXPECT_LT(batch.counters.escalated_seconds, batch.counters.solved_seconds);
   options.mode = Mode::conservative;
   options.exact_stage_iterations = options.max_iterations;
-  batch = batch_ccd(Kind::edge_edge, queries, options);
+  batch = lab::batch_ccd(Kind::edge_edge, queries, options, kNoSweptBoxes);
   EXPECT_EQ(batch.counters.exact_escalations, 0);
   EXPECT_EQ(batch.counters.hits, 2);  // its long search finds the near miss within tolerance
   options.exact_stage_iterations = 16;
-  batch = batch_ccd(Kind::edge_edge, queries, options);
+  batch = lab::batch_ccd(Kind::edge_edge, queries, options, kNoSweptBoxes);
   EXPECT_EQ(batch.counters.exact_escalations, 1);  // a short one hands it to the exact stage
   EXPECT_EQ(batch.counters.hits, 1);
   EXPECT_EQ(batch.counters.undecided, 0);

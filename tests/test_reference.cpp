@@ -173,20 +173,26 @@ TEST(SignFilter, VerdictsDoNotDependOnUnitsAcrossTheDirectFramesWindow) {
   // the largest about the window's top, 2^-202 to 2^-199 about its bottom;
   // 2^600 and 2^-600 well outside. (Fails when the direct frame's floor is
   // too large for the bottom of the window.)
-  expect_verdicts_independent_of_units({.sign = true, .separation = false}, 2.0,
+  expect_verdicts_independent_of_units({.sign = true, .separation = false, .swept_box = false}, 2.0,
                                        {-1000, -600, -202, -201, -200, -199, 197, 198, 199, 200, 600, 1000});
 }
 
 TEST(SeparationFilter, VerdictsDoNotDependOnUnitsAcrossTheDirectFramesWindow) {
   // Its window is [2^-40, 2^40] (differences up to 3.2); 2^-190 and 2^190
   // would underflow or overflow in it.
-  expect_verdicts_independent_of_units({.sign = false, .separation = true, .pieces = 1}, 0.6,
+  expect_verdicts_independent_of_units({.sign = false, .separation = true, .pieces = 1, .swept_box = false}, 0.6,
                                        {-1000, -600, -190, -100, -42, -41, -40, -39, 37, 38, 39, 40, 100, 190, 600, 1000});
 }
 
-// The pieces and the swept boxes run in the separation filter's direct
-// frame only (outside it the whole-step filters decide alone), where
-// scaling by a power of two changes nothing either.
+// The swept boxes run in the sign filter's frames, direct and scaled.
+TEST(SweptBoxFilter, VerdictsDoNotDependOnUnitsAcrossTheDirectFramesWindow) {
+  expect_verdicts_independent_of_units({.sign = false, .separation = false, .pieces = 1, .swept_box = true}, 2.0,
+                                       {-1000, -600, -202, -201, -200, -199, 197, 198, 199, 200, 600, 1000});
+}
+
+// The pieces run in the separation filter's direct frame only (outside it
+// the whole-step filters decide alone), where scaling by a power of two
+// changes nothing either.
 TEST(PiecewiseFilter, VerdictsDoNotDependOnUnitsWithinTheDirectWindow) {
   for (const int pieces : {2, 4, 8})
     for (const bool swept_box : {false, true})
@@ -254,7 +260,7 @@ TEST(PiecewiseFilter, CullsNoContactInTheMiddleOfTheStep) {
             if (verdict.culled() && pieces >= 4 && swept_box && separation < gap) {
               ++near_misses_culled;
               const Options exact{.mode = Mode::exact, .min_distance = separation};
-              const lab::Settings unfiltered{.sign_filter = false, .separation_filter = false};
+              const lab::Settings unfiltered{.sign_filter = false, .separation_filter = false, .swept_box_filter = false};
               EXPECT_FALSE(lab::query_ccd(kind, near_miss, exact, unfiltered).hit)
                   << to_string(kind) << " trial " << trial << " separation " << separation;
             }

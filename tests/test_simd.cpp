@@ -69,7 +69,7 @@ std::vector<reference::FilterSettings> all_settings() {
     for (auto [sign, subdivide, separation] :
          {std::tuple{true, true, false}, {true, false, false}, {false, true, true},
           {true, true, true}, {true, false, true}})
-      for (auto [pieces, swept_box] : {std::pair{1, false}, {4, false}, {2, true}, {8, false}})
+      for (auto [pieces, swept_box] : {std::pair{1, false}, {1, true}, {4, true}, {2, false}, {8, false}})
         if (separation || pieces == 1)
           settings.push_back({.certified = certified, .sign = sign, .subdivide = subdivide,
                               .separation = separation, .pieces = pieces, .swept_box = swept_box});

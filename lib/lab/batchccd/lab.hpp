@@ -48,9 +48,11 @@ struct Settings {
   // filter there (docs/design.md §4a). 1 (or any other value): the whole
   // step only.
   int filter_pieces = 4;
-  // Then the swept boxes of the two primitives (their points at t0 and t1):
-  // apart along an axis, no contact. Redundant after a tight broad phase.
-  bool swept_box_filter = false;
+  // Before all of them, the swept boxes of the two primitives in the frame
+  // of one vertex (their points at t0 and t1 relative to x1): apart along
+  // an axis, no contact. Comparisons only; the relative frame makes them
+  // tighter than a broad phase's world boxes.
+  bool swept_box_filter = true;
 };
 
 // A mode or a baseline: what the tools run side by side.

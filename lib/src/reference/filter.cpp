@@ -10,6 +10,7 @@
 #include "reference/piecewise_filter.hpp"
 #include "reference/separation_filter.hpp"
 #include "reference/sign_filter.hpp"
+#include "reference/swept_box_filter.hpp"
 
 namespace batchccd::reference {
 namespace {
@@ -41,6 +42,21 @@ DirectFrame direct_frame(Kind kind, const Query& query) {
   return frame;
 }
 
+// A scaled query's differences as the filters take them.
+struct ScaledDifferences {
+  Vector3<double> relative[3][2];
+  double largest[3][2];
+  double overall = 0;
+  explicit ScaledDifferences(const ScaledQuery& scaled) {
+    for (int i = 0; i < 3; ++i)
+      for (int tau = 0; tau < 2; ++tau) {
+        relative[i][tau] = as_vector(scaled.relative[i][tau]);
+        largest[i][tau] = largest_magnitude(relative[i][tau]);
+        overall = std::max(overall, largest[i][tau]);
+      }
+  }
+};
+
 }  // namespace
 
 bool sign_filter_culls(const ScaledQuery& query, bool certified, bool subdivide) {
@@ -69,11 +85,11 @@ static_assert(kSeparationDirectLowest >= kDirectLowest && kSeparationDirectHighe
 
 namespace {
 
-// The stages after the whole-step filters (piecewise_filter.hpp), for a
+// The stage after the whole-step filters (piecewise_filter.hpp), for a
 // query in the separation filter's direct frame: the pieces for what the
-// separation filter (which left its bounds in `measured`) kept, then the
-// swept boxes. `separation` as in that frame's units.
-FilterVerdict later_stages(Kind kind, const DirectFrame& direct, const SeparationMeasures<double>& measured,
+// separation filter (which left its bounds in `measured`) kept.
+// `separation` as in that frame's units.
+FilterVerdict pieces_stage(Kind kind, const DirectFrame& direct, const SeparationMeasures<double>& measured,
                            const FilterSettings& settings, double separation, FilterVerdict verdict) {
   if (verdict.culled()) return verdict;
   if (settings.separation && settings.pieces > 1) {
@@ -84,10 +100,12 @@ FilterVerdict later_stages(Kind kind, const DirectFrame& direct, const Separatio
                                      settings.sign ? &test : nullptr, direct.largest, settings.certified,
                                      settings.within, separation);
   }
-  if (settings.swept_box && !verdict.pieces)
-    verdict.swept_box = swept_boxes_apart(kind, direct.relative, direct.overall, settings.within, separation);
   return verdict;
 }
+
+// The swept boxes run before every other filter, in the sign filter's
+// frames: comparisons only, and on a broad phase's padded list they rule
+// out most candidates by themselves.
 
 // run_filters for a call with separations: the same frames, the filters of
 // docs/design.md §11.
@@ -95,7 +113,12 @@ FilterVerdict run_filters_within(Kind kind, const Query& query, const FilterSett
   FilterVerdict verdict;
   const double separation = settings.min_distance;
   const DirectFrame direct = direct_frame(kind, query);
-  const bool sign_scaled = settings.sign && !direct.within(kDirectLowest, kDirectHighest);
+  const bool in_window = direct.within(kDirectLowest, kDirectHighest);
+  verdict.swept_box = settings.swept_box && in_window &&
+                      swept_boxes_apart(kind, direct.relative, direct.overall, true, separation);
+  if (verdict.swept_box) return verdict;
+  const bool sign_scaled = settings.sign && !in_window;
+  const bool boxes_scaled = settings.swept_box && !in_window;
   if (settings.sign && !sign_scaled)
     verdict.sign = plane_distance_culls(kind, direct.relative, direct.largest, direct_coefficient_error().floor,
                                         settings.certified, separation);
@@ -106,26 +129,22 @@ FilterVerdict run_filters_within(Kind kind, const Query& query, const FilterSett
     const SeparationErrorModel error = separation_error(0.0, settings.certified);
     verdict.separation =
         separation_filter_culls_within(kind, direct.relative, error.relative, error.floor, separation, &measured);
-    return later_stages(kind, direct, measured, settings, separation, verdict);
+    return pieces_stage(kind, direct, measured, settings, separation, verdict);
   }
-  if (!sign_scaled && !separation_due)
-    return later ? later_stages(kind, direct, measured, settings, separation, verdict) : verdict;
+  if (!sign_scaled && !boxes_scaled && !separation_due) return verdict;
   const ScaledQuery scaled = scale_query(kind, query);
   if (!scaled.finite || scaled.coincident) return verdict;  // for the solver's own checks
   const double scaled_separation = to_scaled_length(scaled, separation);
-  Vector3<double> relative[3][2];
-  double largest[3][2];
-  for (int i = 0; i < 3; ++i)
-    for (int tau = 0; tau < 2; ++tau) {
-      relative[i][tau] = as_vector(scaled.relative[i][tau]);
-      largest[i][tau] = largest_magnitude(relative[i][tau]);
-    }
+  const ScaledDifferences frame(scaled);
+  verdict.swept_box = boxes_scaled && swept_boxes_apart(kind, frame.relative, frame.overall, true,
+                                                        scaled_separation, scaled.absolute_error);
+  if (verdict.swept_box) return verdict;
   if (sign_scaled)
-    verdict.sign = plane_distance_culls(kind, relative, largest, coefficient_floor(scaled.absolute_error),
+    verdict.sign = plane_distance_culls(kind, frame.relative, frame.largest, coefficient_floor(scaled.absolute_error),
                                         settings.certified, scaled_separation);
   if (settings.separation && !verdict.sign) {
     const SeparationErrorModel error = separation_error(scaled.absolute_error, settings.certified);
-    verdict.separation = error.enabled && separation_filter_culls_within(kind, relative, error.relative,
+    verdict.separation = error.enabled && separation_filter_culls_within(kind, frame.relative, error.relative,
                                                                          error.floor, scaled_separation);
   }
   return verdict;
@@ -139,7 +158,12 @@ FilterVerdict run_filters(Kind kind, const Query& query, const FilterSettings& s
   // Each filter in its direct frame where that applies (nearly always):
   // most queries end there, without the scaled frame's normalisation.
   const DirectFrame direct = direct_frame(kind, query);
-  const bool sign_scaled = settings.sign && !direct.within(kDirectLowest, kDirectHighest);
+  const bool in_window = direct.within(kDirectLowest, kDirectHighest);
+  verdict.swept_box = settings.swept_box && in_window &&
+                      swept_boxes_apart(kind, direct.relative, direct.overall, false, 0.0);
+  if (verdict.swept_box) return verdict;
+  const bool sign_scaled = settings.sign && !in_window;
+  const bool boxes_scaled = settings.swept_box && !in_window;
   if (settings.sign && !sign_scaled)
     verdict.sign = sign_filter_culls(direct.relative, direct.largest, direct_coefficient_error().floor,
                                      settings.certified, settings.subdivide);
@@ -149,20 +173,21 @@ FilterVerdict run_filters(Kind kind, const Query& query, const FilterSettings& s
   if (separation_due && later) {
     const SeparationErrorModel error = separation_error(0.0, settings.certified);
     verdict.separation = separation_filter_culls(kind, direct.relative, error.relative, error.floor, &measured);
-    return later_stages(kind, direct, measured, settings, 0.0, verdict);
+    return pieces_stage(kind, direct, measured, settings, 0.0, verdict);
   }
-  if (!sign_scaled && !separation_due)
-    return later ? later_stages(kind, direct, measured, settings, 0.0, verdict) : verdict;
+  if (!sign_scaled && !boxes_scaled && !separation_due) return verdict;
   const ScaledQuery scaled = scale_query(kind, query);
   if (!scaled.finite || scaled.coincident) return verdict;  // for the solver's own checks
-  if (sign_scaled) verdict.sign = sign_filter_culls(scaled, settings.certified, settings.subdivide);
+  const ScaledDifferences frame(scaled);
+  verdict.swept_box = boxes_scaled && swept_boxes_apart(kind, frame.relative, frame.overall, false, 0.0);
+  if (verdict.swept_box) return verdict;
+  if (sign_scaled)
+    verdict.sign = sign_filter_culls(frame.relative, frame.largest, coefficient_floor(scaled.absolute_error),
+                                     settings.certified, settings.subdivide);
   if (settings.separation && !verdict.sign) {
     const SeparationErrorModel error = separation_error(scaled.absolute_error, settings.certified);
-    Vector3<double> relative[3][2];
-    for (int i = 0; i < 3; ++i)
-      for (int tau = 0; tau < 2; ++tau) relative[i][tau] = as_vector(scaled.relative[i][tau]);
     verdict.separation =
-        error.enabled && separation_filter_culls(kind, relative, error.relative, error.floor);
+        error.enabled && separation_filter_culls(kind, frame.relative, error.relative, error.floor);
   }
   return verdict;
 }

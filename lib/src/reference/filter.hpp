@@ -16,10 +16,9 @@ struct FilterSettings {
   bool subdivide = true;   // its V = 2 step (false: DNF-style, the four signs only)
   bool separation = true;  // distance at t = 0 against the largest displacement
   // With the separation filter: both filters over 2, 4 or 8 equal pieces of
-  // the step for what they keep (1: the whole step only); then the swept
-  // boxes (docs/design.md §4a).
+  // the step for what they keep (1: the whole step only; docs/design.md §4a).
   int pieces = 4;
-  bool swept_box = false;
+  bool swept_box = true;  // the swept boxes in the frame of x1, before the others
   // A call with minimum separations (docs/design.md §11) filters every candidate
   // for one, 0 included: the sign filter as the distance to the plane or
   // line pair (no halves), the separation filter with the separation added.
@@ -39,9 +38,9 @@ inline FilterSettings filter_settings(const Options& options, const lab::Setting
           lab.separation_filter, pieces, lab.swept_box_filter, options.min_distance > 0, options.min_distance};
 }
 
-// What each filter said of one query. The sign filter runs first; the
-// separation filter only sees what it keeps, the pieces what both keep,
-// the swept boxes what the pieces keep (at most one culls).
+// What each filter said of one query. The swept boxes run first, then the
+// sign filter on what they keep; the separation filter only sees what both
+// keep, the pieces what all three keep (at most one culls).
 struct FilterVerdict {
   bool sign = false;
   bool separation = false;

@@ -8,9 +8,9 @@
 // The filters over pieces of the step (docs/design.md §4a): the step cut
 // into 2, 4 or 8 equal pieces, a piece free of contact when the sign test (or,
 // with a separation, the plane bound) or the separation filter rules it out
-// there, a query culled when every piece is free. Then the margin-free
-// swept boxes. Written once over T (double, or an xsimd batch), like the
-// whole-step filters, for the direct frame of the separation filter only.
+// there, a query culled when every piece is free. Written once over T
+// (double, or an xsimd batch), like the whole-step filters, for the direct
+// frame of the separation filter only.
 namespace batchccd::reference {
 
 // Pieces' cubic coefficients in Bernstein form, each piece's up to positive
@@ -194,37 +194,6 @@ auto piecewise_culls(int pieces, Kind kind, const Vector3<T> (&relative)[3][2], 
                               separation);
   return piecewise_culls<2>(kind, relative, measured, error_relative, floor, sign, largest, certified, within,
                             separation);
-}
-
-// The margin-free swept boxes, in the frame of x1 (where every point still
-// moves on a line, so each primitive stays within the box of its points at
-// t = 0 and t = 1): apart along an axis by more than s, no contact. Without
-// a separation the comparisons are exact: rounding is monotonic, so
-// fl(x - a) > fl(y - b) implies x - a > y - b. With one the gap is taken
-// with a margin: each difference errs by at most u of `overall` (the
-// largest difference component), the gap's subtraction by u of itself.
-template <class T>
-auto swept_boxes_apart(Kind kind, const Vector3<T> (&relative)[3][2], T overall, bool within, T separation) {
-  // VF: the face (x1, x2, x3) against the vertex x4; EE: edge (x1, x2) against edge (x3, x4).
-  const int first_other = kind == Kind::vertex_face ? 2 : 1;
-  const T threshold =
-      within ? (separation + T(8 * kUnitRoundoff) * overall) * T(SeparationErrors::grow) : T(0);
-  const auto apart_along = [&](auto coordinate) {
-    T low_a(0), high_a(0);  // x1 itself
-    T low_b = coordinate(relative[first_other][0]), high_b = low_b;
-    for (int i = 0; i < 3; ++i)
-      for (int tau = 0; tau < 2; ++tau) {
-        const T x = coordinate(relative[i][tau]);
-        if (i < first_other) {
-          low_a = select(x < low_a, x, low_a), high_a = select(x > high_a, x, high_a);
-        } else {
-          low_b = select(x < low_b, x, low_b), high_b = select(x > high_b, x, high_b);
-        }
-      }
-    return ((low_b - high_a) > threshold) | ((low_a - high_b) > threshold);
-  };
-  return apart_along([](const Vector3<T>& v) { return v.x; }) | apart_along([](const Vector3<T>& v) { return v.y; }) |
-         apart_along([](const Vector3<T>& v) { return v.z; });
 }
 
 }  // namespace batchccd::reference

@@ -54,17 +54,42 @@ inline constexpr double kSeparationDirectLowest = 0x1p-40;
 inline constexpr double kSeparationDirectHighest = 0x1p40;
 
 // A lower bound of max(0, numerator)^2 / denominator (denominator >= 0 in
-// exact arithmetic), given their magnitudes; `floor` is the absolute error
-// floor of both. With `signed_gap` false |numerator| counts instead.
+// exact arithmetic), given their magnitudes, kept as its two parts: the
+// division is the filter's dearest operation, and of several axes' bounds
+// only the largest is divided out (largest_ratio). `floor` is the absolute
+// error floor of both. With `signed_gap` false |numerator| counts instead.
 template <class T>
-T squared_ratio_lower_bound(const Bounded<T>& numerator, const Bounded<T>& denominator, T relative,
-                            T floor, bool signed_gap) {
+struct RatioBound {
+  T excess;  // a lower bound of the numerator, or 0
+  T room;    // an upper bound of the denominator, or 1 (with excess 0)
+
+  T value() const { return excess * excess / room * T(SeparationErrors::shrink); }
+};
+
+template <class T>
+RatioBound<T> squared_ratio_bound(const Bounded<T>& numerator, const Bounded<T>& denominator, T relative,
+                                  T floor, bool signed_gap) {
   using std::abs;
   const T excess = (signed_gap ? numerator.value : abs(numerator.value)) -
                    (relative * numerator.magnitude + floor);
   const T room = denominator.value + (relative * denominator.magnitude + floor);
-  return select((excess > T(0)) & (room > T(0)),
-                excess * excess / room * T(SeparationErrors::shrink), T(0));
+  const auto bounded = (excess > T(0)) & (room > T(0));
+  return {select(bounded, excess, T(0)), select(bounded, room, T(1))};
+}
+
+// Of two bounds, the one with the larger ratio, compared by
+// cross-multiplication. A comparison that rounding gets wrong only picks
+// the other bound, which holds as well.
+template <class T>
+RatioBound<T> larger_ratio(const RatioBound<T>& a, const RatioBound<T>& b) {
+  const auto b_larger = b.excess * b.excess * a.room > a.excess * a.excess * b.room;
+  return {select(b_larger, b.excess, a.excess), select(b_larger, b.room, a.room)};
+}
+
+template <class T>
+T squared_ratio_lower_bound(const Bounded<T>& numerator, const Bounded<T>& denominator, T relative,
+                            T floor, bool signed_gap) {
+  return squared_ratio_bound(numerator, denominator, relative, floor, signed_gap).value();
 }
 
 // An upper bound of |w|^2 for a difference w of scaled positions whose
@@ -81,8 +106,8 @@ T squared_norm_upper_bound(const Vector3<T>& w, const Vector3<T>& magnitude, T r
 // Squared gap between the intervals spanned by two pairs of projections
 // onto an axis of squared length axis2: a lower bound (0 when they overlap).
 template <class T>
-T squared_gap_lower_bound(const Bounded<T> (&a)[2], const Bounded<T> (&b)[2],
-                          const Bounded<T>& axis2, T relative, T floor) {
+RatioBound<T> squared_gap_bound(const Bounded<T> (&a)[2], const Bounded<T> (&b)[2], const Bounded<T>& axis2,
+                                T relative, T floor) {
   const T a_low = select(a[0].value < a[1].value, a[0].value, a[1].value);
   const T a_high = select(a[0].value < a[1].value, a[1].value, a[0].value);
   const T b_low = select(b[0].value < b[1].value, b[0].value, b[1].value);
@@ -91,7 +116,7 @@ T squared_gap_lower_bound(const Bounded<T> (&a)[2], const Bounded<T> (&b)[2],
       max_of(max_of(a[0].magnitude, a[1].magnitude), max_of(b[0].magnitude, b[1].magnitude));
   // Each end may be off by its error: the gap by twice the largest.
   const Bounded<T> gap{max_of(b_low - a_high, a_low - b_high), T(2) * magnitude};
-  return squared_ratio_lower_bound(gap, axis2, relative, T(2) * floor, true);
+  return squared_ratio_bound(gap, axis2, relative, T(2) * floor, true);
 }
 
 template <class T>
@@ -115,17 +140,16 @@ T vertex_face_distance2(const Vector3<T>& b, const Vector3<T>& bm, const Vector3
   const Vector3<T>* ends[3] = {&b, &c, &zero};
   const Vector3<T>* start_magnitudes[3] = {&zero, &bm, &cm};
   const Vector3<T>* end_magnitudes[3] = {&bm, &cm, &zero};
-  T in_plane(0);
+  RatioBound<T> in_plane{T(0), T(1)};
   for (int k = 0; k < 3; ++k) {
     const Vector3<T>& start = *starts[k];
     const Vector3<T>& start_magnitude = *start_magnitudes[k];
     const Vector3<T> edge = *ends[k] - start, edge_magnitude = *end_magnitudes[k] + start_magnitude;
     const Vector3<T> m = cross(edge, n), mm = cross_magnitude(edge_magnitude, nm);
     const Bounded<T> outside = bounded_dot(p - start, pm + start_magnitude, m, mm);
-    in_plane = max_of(in_plane, squared_ratio_lower_bound(outside, bounded_dot(m, mm, m, mm),
-                                                          relative, floor, true));
+    in_plane = larger_ratio(in_plane, squared_ratio_bound(outside, bounded_dot(m, mm, m, mm), relative, floor, true));
   }
-  return plane + in_plane;
+  return plane + in_plane.value();
 }
 template <class T>
 T vertex_face_distance2(const Vector3<T>& b, const Vector3<T>& c, const Vector3<T>& p, T relative,
@@ -143,15 +167,15 @@ T edge_edge_distance2(const Vector3<T>& a1, const Vector3<T>& a1m, const Vector3
                                              relative, floor, false);
   const Vector3<T> axes[4] = {cross(a1, n), cross(db, n), a1, db};
   const Vector3<T> axis_magnitudes[4] = {cross_magnitude(a1m, nm), cross_magnitude(dbm, nm), a1m, dbm};
-  T in_plane(0);
+  RatioBound<T> in_plane{T(0), T(1)};
   for (int k = 0; k < 4; ++k) {
     const Vector3<T>& v = axes[k];
     const Vector3<T>& vm = axis_magnitudes[k];
     const Bounded<T> a[2] = {{T(0), T(0)}, bounded_dot(a1, a1m, v, vm)};  // edge a starts at the origin
     const Bounded<T> b[2] = {bounded_dot(b0, b0m, v, vm), bounded_dot(b1, b1m, v, vm)};
-    in_plane = max_of(in_plane, squared_gap_lower_bound(a, b, bounded_dot(v, vm, v, vm), relative, floor));
+    in_plane = larger_ratio(in_plane, squared_gap_bound(a, b, bounded_dot(v, vm, v, vm), relative, floor));
   }
-  return planes + in_plane;
+  return planes + in_plane.value();
 }
 template <class T>
 T edge_edge_distance2(const Vector3<T>& a1, const Vector3<T>& b0, const Vector3<T>& b1, T relative,
