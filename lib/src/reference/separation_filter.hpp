@@ -108,10 +108,8 @@ T squared_norm_upper_bound(const Vector3<T>& w, const Vector3<T>& magnitude, T r
 template <class T>
 RatioBound<T> squared_gap_bound(const Bounded<T> (&a)[2], const Bounded<T> (&b)[2], const Bounded<T>& axis2,
                                 T relative, T floor) {
-  const T a_low = select(a[0].value < a[1].value, a[0].value, a[1].value);
-  const T a_high = select(a[0].value < a[1].value, a[1].value, a[0].value);
-  const T b_low = select(b[0].value < b[1].value, b[0].value, b[1].value);
-  const T b_high = select(b[0].value < b[1].value, b[1].value, b[0].value);
+  const T a_low = min_of(a[0].value, a[1].value), a_high = max_of(a[1].value, a[0].value);
+  const T b_low = min_of(b[0].value, b[1].value), b_high = max_of(b[1].value, b[0].value);
   const T magnitude =
       max_of(max_of(a[0].magnitude, a[1].magnitude), max_of(b[0].magnitude, b[1].magnitude));
   // Each end may be off by its error: the gap by twice the largest.

@@ -35,9 +35,9 @@ auto swept_boxes_apart(Kind kind, const Vector3<T> (&relative)[3][2], T overall,
       for (int tau = 0; tau < 2; ++tau) {
         const T x = coordinate(relative[i][tau]);
         if (i < first_other) {
-          low_a = select(x < low_a, x, low_a), high_a = select(x > high_a, x, high_a);
+          low_a = min_of(x, low_a), high_a = max_of(x, high_a);
         } else {
-          low_b = select(x < low_b, x, low_b), high_b = select(x > high_b, x, high_b);
+          low_b = min_of(x, low_b), high_b = max_of(x, high_b);
         }
       }
     return ((low_b - high_a) > threshold) | ((low_a - high_b) > threshold);
