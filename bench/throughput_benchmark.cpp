@@ -59,10 +59,13 @@ const std::vector<Query>& streamed_queries() {
   return queries;
 }
 
-// Which filters a benchmark runs: its range(0) (0 sign, 1 separation, 2 both).
+// Which filters a benchmark runs: its range(0) (0 the sign filter alone,
+// 1 the separation filter alone, 2 every stage a call runs: the boxes, both
+// filters, their pieces).
 reference::FilterSettings settings(const benchmark::State& state) {
   const auto which = state.range(0);
-  return {.certified = true, .sign = which != 1, .subdivide = true, .separation = which != 0};
+  if (which == 2) return {};
+  return {.sign = which == 0, .separation = which == 1, .pieces = 1, .swept_box = false};
 }
 
 const simd::FilterKernels* kernels_for(benchmark::State& state, Isa isa) {
@@ -170,7 +173,7 @@ void end_to_end(benchmark::State& state, const lab::Method& method, Isa isa) {
 void register_all() {
   const std::pair<const char*, Isa> isas[] = {
       {"scalar", Isa::scalar}, {"sse4", Isa::sse4}, {"avx2", Isa::avx2}, {"avx512", Isa::avx512}};
-  // Arg: 0 the sign filter alone, 1 the separation filter alone, 2 both.
+  // Arg: 0 the sign filter alone, 1 the separation filter alone, 2 every stage.
   for (const auto& [name, isa] : isas) {
     const std::string suffix = std::string("/") + name;
     benchmark::RegisterBenchmark(("Filter/raw/cached" + suffix).c_str(),

@@ -23,10 +23,10 @@ struct MethodEntry {
 
 constexpr MethodEntry kMethods[] = {
     {Method::exact, "exact", "decisions of exact arithmetic (certified path, GMP for the uncertain)"},
-    {Method::conservative, "conservative", "certified floating point (GMP where it cannot settle), both lane filters (default)"},
+    {Method::conservative, "conservative", "certified floating point (GMP where it cannot settle), every lane filter (default)"},
     {Method::fast, "fast", "the same filters and solver in plain double arithmetic"},
     {Method::cubic, "cubic", "unfiltered cubic solver, roots in double (the baseline)"},
-    {Method::dnf, "dnf", "conservative with a DNF-style filter: four signs, no V = 2 step"},
+    {Method::dnf, "dnf", "conservative with only a DNF-style filter: four signs, no V = 2 step, no boxes"},
     {Method::fcl, "fcl", "FCL 0.7 fcl::detail::Intersect (interval Newton), an outside peer"},
 };
 
@@ -60,6 +60,7 @@ EngineCall engine_call(Method method, int threads) {
       options.mode = Mode::conservative;
       call.settings.sign_filter_subdivision = false;
       call.settings.separation_filter = false;
+      call.settings.swept_box_filter = false;
       break;
     case Method::fcl: throw std::invalid_argument("fcl is not one of batchccd's modes");
   }

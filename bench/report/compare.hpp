@@ -15,10 +15,10 @@ namespace batchccd::bench {
 
 enum class Method {
   exact,         // Mode::exact
-  conservative,  // Mode::conservative, both lane filters
+  conservative,  // Mode::conservative, every lane filter
   fast,          // lab::Baseline::fast
   cubic,         // lab::Baseline::cubic: the unfiltered cubic solver, the baseline
-  dnf,           // conservative with the DNF-style filter: four signs, no V = 2 step, no separation filter
+  dnf,           // conservative with the DNF-style filter alone: four signs, no V = 2 step, no other filter
   fcl,           // FCL 0.7's fcl::detail::Intersect, an outside peer
 };
 
