@@ -17,10 +17,10 @@ namespace batchccd {
 struct Counters {
   std::int64_t candidates = 0;  // queries evaluated
   std::int64_t culled = 0;      // removed by the lane filters
-  std::int64_t culled_by_sign = 0;        // of those, by the sign filter
+  std::int64_t culled_by_sign = 0;        // of those, by the sign filter (it sees what the boxes kept)
   std::int64_t culled_by_separation = 0;  // by the separation filter (it sees what the sign filter kept)
   std::int64_t culled_by_pieces = 0;      // by both over pieces of the step (4 pieces of the step)
-  std::int64_t culled_by_swept_box = 0;   // by the swept boxes (a benchmark stage, lab.hpp)
+  std::int64_t culled_by_swept_box = 0;   // by the swept boxes, the first filter (counted before the others)
   std::int64_t solved = 0;      // sent to the solver (candidates - culled)
   std::int64_t hits = 0;
   // Reported as hits without a decision: with min_distance > 0, the search
