@@ -12,8 +12,8 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/partitioner.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
+#include "arena.hpp"
 #include "mesh_validation.hpp"
 #include "decider.hpp"
 #include "reference/reference.hpp"
@@ -43,18 +43,6 @@ void tally(const reference::Evaluation& e, Partial& partial) {
   c.invalid += e.result.status != Status::ok;
   reference::count_exact_stage_and_time(e, c);
   if (e.result.hit) partial.earliest_toi = std::min(partial.earliest_toi, e.result.toi);
-}
-
-// Runs `work` with Options::threads workers: in an arena of that many, or
-// in the caller's arena when it asks for none.
-template <class Work>
-void in_arena(const Options& options, const Work& work) {
-  if (options.threads > 0) {
-    tbb::task_arena arena(options.threads);
-    arena.execute(work);
-  } else {
-    work();
-  }
 }
 
 // A call runs in two phases, each in the current arena. First the lane
@@ -236,7 +224,7 @@ void lab::batch_ccd(Kind kind, std::span<const Query> queries, std::span<const d
   const bool filtered = decider_of(options, lab) != Decider::cubic;  // the baseline runs unfiltered
   const simd::RawQueries source =
       simd::raw_queries(reference::evaluated_kind(kind), queries.data(), queries.size());
-  in_arena(options, [&] {
+  in_arena(options.threads, [&] {
     Partials partials;
     std::vector<std::size_t> survivors;
     if (filtered)
@@ -297,7 +285,7 @@ void lab::mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const
       separations_of(min_distances.vertex_edge, candidates.vertex_edge.size(), "vertex-edge", options, lab);
   const Separations vertex_vertex_separations = separations_of(
       min_distances.vertex_vertex, candidates.vertex_vertex.size(), "vertex-vertex", options, lab);
-  in_arena(options, [&] {
+  in_arena(options.threads, [&] {
     // The lane filters check the ids of every list they read on the way;
     // here the rest: shapes, faces, lists switched off, the baseline's lists.
     check_mesh(mesh, candidates, {.vertex_face = !filtered || !options.vertex_face,

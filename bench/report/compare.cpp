@@ -8,9 +8,9 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include "peers/fcl_peer.hpp"
+#include "scheduler/arena.hpp"
 
 namespace batchccd::bench {
 namespace {
@@ -82,12 +82,7 @@ std::vector<Hit> run_fcl(const Workload& workload, int threads) {
                         }
                       });
   };
-  if (threads > 0) {
-    tbb::task_arena arena(threads);
-    arena.execute(work);
-  } else {
-    work();
-  }
+  in_arena(threads, work);
   std::vector<Hit> hits;
   for (const std::vector<Hit>& mine : found) hits.insert(hits.end(), mine.begin(), mine.end());
   return hits;
