@@ -431,6 +431,17 @@ struct ScaledFrame {
   typename L::PowerOfTwo length_scale;
 };
 
+// Whether a source's coordinates are all finite, known before its lanes
+// run: a mesh's packed rows say so (PackedPositions); raw queries do not.
+template <Kind K>
+bool known_finite(const RawQueriesOf<K>&) {
+  return false;
+}
+template <class MeshSource>
+bool known_finite(const MeshSource& mesh) {
+  return mesh.positions.finite;
+}
+
 // A group's differences x_{i+2}(tau) - x_1(tau) in the input's units, each
 // one's largest component magnitude, and the largest of all: the filters'
 // direct frames (reference::run_filters).
@@ -442,9 +453,10 @@ struct DirectDifferences {
   typename L::Vector relative[3][2];
   Double largest[3][2];
   Double overall;
+  bool finite_input;  // no coordinate of the source is a NaN or infinite
 
   template <class Source, class Group>
-  DirectDifferences(const Source& source, const Group& group) {
+  DirectDifferences(const Source& source, const Group& group) : finite_input(known_finite(source)) {
     // Only the differences: the positions, kept for the rare scaled frame,
     // spilled to the stack throughout (it loads them again).
     Gather<Arch>::differences(source, group, relative);
@@ -460,8 +472,10 @@ struct DirectDifferences {
     return (overall >= Double(lowest)) & (overall <= Double(highest));
   }
   // The same without a NaN. Within a window the differences are finite
-  // and their sum cannot overflow, so it is NaN only through a NaN.
+  // and their sum cannot overflow, so it is NaN only through a NaN; of
+  // finite coordinates no difference is a NaN at all.
   typename L::Mask within_without_nan(double lowest, double highest) const {
+    if (finite_input) return within(lowest, highest);
     Double component[18];
     for (int v = 0; v < 6; ++v) {
       const auto& d = (&relative[0][0])[v];

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -52,6 +53,7 @@ inline constexpr int kRowDoubles = 8;
 struct MeshPositions {
   const double* rows;  // 64-byte aligned
   std::int64_t vertices;
+  bool finite;  // no coordinate is a NaN or infinite: no difference is a NaN
 };
 
 // Where vertex v's row starts among MeshPositions::rows. Always inlined:
@@ -77,6 +79,7 @@ class PackedPositions {
 
   // Rows [begin, end): callers may fill disjoint ranges in parallel.
   void pack(const PositionsView& t0, const PositionsView& t1, std::int64_t begin, std::int64_t end) {
+    bool finite = true;
     t0.visit([&](const auto& start) {
       t1.visit([&](const auto& stop) {
         for (std::int64_t v = begin; v < end; ++v) {
@@ -86,12 +89,19 @@ class PackedPositions {
             row[c + 3] = stop(v, c);
           }
           row[6] = row[7] = 0;
+          // x - x is 0 for finite x, a NaN otherwise; the sum of a row's
+          // too (x86 keeps no flag here: no branch per coordinate).
+          double zero = 0;
+          for (int c = 0; c < 6; ++c) zero += row[c] - row[c];
+          finite &= zero == 0;
         }
       });
     });
+    if (!finite) finite_.store(false, std::memory_order_relaxed);
   }
 
-  MeshPositions view() const { return {rows_.get(), vertices_}; }
+  // The rows, once pack() has filled them all.
+  MeshPositions view() const { return {rows_.get(), vertices_, finite_.load(std::memory_order_relaxed)}; }
 
  private:
   struct Free {
@@ -99,6 +109,7 @@ class PackedPositions {
   };
   std::int64_t vertices_;
   std::unique_ptr<double[], Free> rows_;
+  std::atomic<bool> finite_{true};
 };
 
 // Faces, one row of four per face: where its three corners' rows start

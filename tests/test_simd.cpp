@@ -202,39 +202,53 @@ TEST(SimdKernels, MatchTheReferenceFilterOnAdversarialQueries) {
   }
 }
 
+// On meshes of finite coordinates (the lanes then skip their NaN checks:
+// PackedPositions knows) and on one with NaN, infinite, huge and nearly
+// coincident vertices (they keep them).
 TEST(SimdKernels, MatchTheReferenceFilterOnMeshIndexLists) {
   const auto kernels = vector_kernels();
   if (kernels.empty()) GTEST_SKIP() << "no vector instruction set on this processor";
-  std::mt19937_64 random(5);
-  std::uniform_real_distribution<double> coordinate(-1, 1);
-  const int vertices = 200, faces = 300, pairs = 20000;
-  Eigen::MatrixXd t0(vertices, 3), t1(vertices, 3);
-  for (int i = 0; i < vertices; ++i)
-    for (int c = 0; c < 3; ++c) {
-      t0(i, c) = coordinate(random);
-      t1(i, c) = t0(i, c) + 0.1 * coordinate(random);
+  for (const bool poisoned : {false, true}) {
+    std::mt19937_64 random(5);
+    std::uniform_real_distribution<double> coordinate(-1, 1);
+    const int vertices = 200, faces = 300, pairs = 20000;
+    Eigen::MatrixXd t0(vertices, 3), t1(vertices, 3);
+    for (int i = 0; i < vertices; ++i)
+      for (int c = 0; c < 3; ++c) {
+        t0(i, c) = coordinate(random);
+        t1(i, c) = t0(i, c) + 0.1 * coordinate(random);
+      }
+    if (poisoned) {
+      t0(3, 1) = std::numeric_limits<double>::quiet_NaN();
+      t1(7, 2) = std::numeric_limits<double>::infinity();
+      t0(11, 0) = -std::numeric_limits<double>::infinity();
+      t0.row(13) *= 1e300, t1.row(13) *= 1e300;  // outside the direct frames' window
+      t1.row(17) = t0.row(17) = t0.row(19) + Eigen::RowVector3d::Constant(1e-300);
+      t1.row(19) = t0.row(19);
     }
-  Eigen::MatrixXi face_matrix(faces, 3);
-  std::uniform_int_distribution<int> vertex(0, vertices - 1), face(0, faces - 1);
-  for (int f = 0; f < faces; ++f)
-    for (int c = 0; c < 3; ++c) face_matrix(f, c) = vertex(random);
-  std::vector<std::array<int, 2>> vf(pairs);
-  std::vector<std::array<int, 4>> ee(pairs);
-  for (auto& p : vf) p = {vertex(random), face(random)};
-  for (auto& e : ee) e = {vertex(random), vertex(random), vertex(random), vertex(random)};
-  const simd::PackedPositions packed(t0, t1);
-  const simd::MeshPositions positions = packed.view();
-  const simd::PackedFaces packed_faces(face_matrix, faces);
-  const simd::MeshVertexFace vf_source{positions, packed_faces.view(), vf.data()};
-  const simd::MeshEdgeEdge ee_source{positions, ee.data()};
-  for (const reference::FilterSettings& settings : all_settings()) {
-    const auto vf_expected = survivors(simd::kScalarKernels.vertex_face, vf_source, 1, pairs, settings);
-    const auto ee_expected = survivors(simd::kScalarKernels.edge_edge, ee_source, 1, pairs, settings);
-    for (const simd::FilterKernels* k : kernels) {
-      EXPECT_EQ(survivors(k->vertex_face, vf_source, 1, pairs, settings), vf_expected)
-          << to_string(k->isa) << " " << describe(settings);
-      EXPECT_EQ(survivors(k->edge_edge, ee_source, 1, pairs, settings), ee_expected)
-          << to_string(k->isa) << " " << describe(settings);
+    Eigen::MatrixXi face_matrix(faces, 3);
+    std::uniform_int_distribution<int> vertex(0, vertices - 1), face(0, faces - 1);
+    for (int f = 0; f < faces; ++f)
+      for (int c = 0; c < 3; ++c) face_matrix(f, c) = vertex(random);
+    std::vector<std::array<int, 2>> vf(pairs);
+    std::vector<std::array<int, 4>> ee(pairs);
+    for (auto& p : vf) p = {vertex(random), face(random)};
+    for (auto& e : ee) e = {vertex(random), vertex(random), vertex(random), vertex(random)};
+    const simd::PackedPositions packed(t0, t1);
+    const simd::MeshPositions positions = packed.view();
+    EXPECT_EQ(positions.finite, !poisoned);
+    const simd::PackedFaces packed_faces(face_matrix, faces);
+    const simd::MeshVertexFace vf_source{positions, packed_faces.view(), vf.data()};
+    const simd::MeshEdgeEdge ee_source{positions, ee.data()};
+    for (const reference::FilterSettings& settings : all_settings()) {
+      const auto vf_expected = survivors(simd::kScalarKernels.vertex_face, vf_source, 1, pairs, settings);
+      const auto ee_expected = survivors(simd::kScalarKernels.edge_edge, ee_source, 1, pairs, settings);
+      for (const simd::FilterKernels* k : kernels) {
+        EXPECT_EQ(survivors(k->vertex_face, vf_source, 1, pairs, settings), vf_expected)
+            << to_string(k->isa) << " " << describe(settings) << (poisoned ? " poisoned" : "");
+        EXPECT_EQ(survivors(k->edge_edge, ee_source, 1, pairs, settings), ee_expected)
+            << to_string(k->isa) << " " << describe(settings) << (poisoned ? " poisoned" : "");
+      }
     }
   }
 }
