@@ -727,6 +727,22 @@ template <class Arch>
     throw IndexOutOfRange{};
 }
 
+// The candidate list read ahead: a mesh's id lists stream from memory (16
+// bytes a candidate, edge pairs), and the hardware's prefetcher alone left
+// the first pass waiting on them. An address, never dereferenced: past the
+// end of the list it is harmless. Raw queries prefetch their own rows
+// (Gather::query_rows).
+template <class Arch, Kind K>
+void prefetch_candidates(const RawQueriesOf<K>&, std::size_t) {}
+template <class Arch, class MeshSource>
+[[gnu::always_inline]] inline void prefetch_candidates(const MeshSource& mesh, std::size_t first) {
+  constexpr std::size_t kAhead = 256;  // candidates: 4 KB of edge pairs
+  constexpr std::size_t kBytes = Lanes<Arch>::size * sizeof(mesh.pairs[0]);
+  const auto ahead = reinterpret_cast<std::uintptr_t>(mesh.pairs + first + kAhead);
+  for (std::size_t line = 0; line < kBytes; line += 64)
+    _mm_prefetch(reinterpret_cast<const char*>(ahead + line), _MM_HINT_T0);
+}
+
 // The filters over candidates [begin, end): see FilterFunction. The first
 // pass runs over all of them and compacts its survivors; the second runs
 // over those alone, in full lanes, and compacts them again; the third
@@ -739,6 +755,7 @@ std::size_t filter_range_of(const Source& source, std::size_t begin, std::size_t
   std::size_t kept = 0;
   for (std::size_t first = begin; first < end; first += lanes) {
     const std::size_t count = std::min(end - first, lanes);
+    prefetch_candidates<Arch>(source, first);
     check_ids<Arch>(source, first, count);  // every candidate passes here first, whatever the settings
     FirstCulls culls;
     if ((settings.sign || settings.swept_box) && count == lanes) {
