@@ -13,6 +13,7 @@
 
 #include "batchccd/batch.hpp"
 #include "batchccd/ccd.hpp"
+#include "same_answers.hpp"
 
 namespace batchccd {
 namespace {
@@ -113,10 +114,7 @@ TEST(PathsAgree, LanesScalarAndExactOnNearMisses) {
       conservative.isa = isa;
       BatchResult lanes;
       batch_ccd(kind, queries, separations, conservative, lanes);
-      for (std::size_t i = 0; i < queries.size(); ++i) {
-        EXPECT_EQ(lanes.results[i].hit, reference.results[i].hit) << to_string(kind) << " " << i << " " << to_string(isa);
-        EXPECT_EQ(lanes.results[i].toi, reference.results[i].toi) << to_string(kind) << " " << i << " " << to_string(isa);
-      }
+      testing::expect_same_answers(lanes, reference, std::string(to_string(kind)) + " " + to_string(isa));
     }
     BatchResult decided;
     batch_ccd(kind, queries, separations, exact, decided);

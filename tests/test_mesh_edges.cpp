@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "batchccd/batchccd.hpp"
+#include "same_answers.hpp"
 
 namespace {
 
@@ -59,11 +60,7 @@ TEST(MeshEdges, MatchesTheVertexIdCall) {
       batchccd::mesh_ccd({mesh.positions_t0, mesh.positions_t1, mesh.faces}, by_vertex);
 
   ASSERT_EQ(by_edge_id.results.size(), vertex_face_pairs.size() + edge_edge_pairs.size());
-  ASSERT_EQ(by_edge_id.results.size(), expected.results.size());
-  for (std::size_t i = 0; i < expected.results.size(); ++i) {
-    EXPECT_EQ(by_edge_id.results[i].hit, expected.results[i].hit) << i;
-    EXPECT_EQ(by_edge_id.results[i].toi, expected.results[i].toi) << i;
-  }
+  batchccd::testing::expect_same_answers(by_edge_id, expected);
   EXPECT_EQ(by_edge_id.earliest_toi, expected.earliest_toi);
   EXPECT_EQ(by_edge_id.counters.candidates, expected.counters.candidates);
   EXPECT_EQ(by_edge_id.counters.hits, expected.counters.hits);
@@ -75,11 +72,7 @@ TEST(MeshEdges, MatchesTheVertexIdCall) {
   batchccd::BatchResult reused = expected;
   reused.results.resize(1);
   batchccd::mesh_ccd(mesh.view(), {vertex_face_pairs, edge_edge_pairs}, {}, reused);
-  ASSERT_EQ(reused.results.size(), by_edge_id.results.size());
-  for (std::size_t i = 0; i < reused.results.size(); ++i) {
-    EXPECT_EQ(reused.results[i].hit, by_edge_id.results[i].hit) << i;
-    EXPECT_EQ(reused.results[i].toi, by_edge_id.results[i].toi) << i;
-  }
+  batchccd::testing::expect_same_answers(reused, by_edge_id);
   EXPECT_EQ(reused.counters.hits, by_edge_id.counters.hits);
 }
 
@@ -114,11 +107,7 @@ TEST(MeshEdges, PointKindsByEdgeId) {
   for (const auto [v, e] : vertex_edge) by_vertex.vertex_edge.push_back({v, mesh.edges(e, 0), mesh.edges(e, 1)});
   const batchccd::BatchResult expected = batchccd::mesh_ccd(mesh.view(), by_vertex, options);
   ASSERT_EQ(by_edge_id.results.size(), vertex_edge.size() + vertex_vertex.size());
-  ASSERT_EQ(expected.results.size(), by_edge_id.results.size());
-  for (std::size_t i = 0; i < expected.results.size(); ++i) {
-    EXPECT_EQ(by_edge_id.results[i].hit, expected.results[i].hit) << i;
-    EXPECT_EQ(by_edge_id.results[i].toi, expected.results[i].toi) << i;
-  }
+  batchccd::testing::expect_same_answers(by_edge_id, expected);
   EXPECT_GT(expected.counters.hits, 0);
   EXPECT_LT(expected.counters.hits, expected.counters.candidates);
 }

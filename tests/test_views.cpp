@@ -10,6 +10,7 @@
 #include "batchccd/batchccd.hpp"
 #include "broad_phase.hpp"
 #include "scenes.hpp"
+#include "same_answers.hpp"
 
 namespace batchccd {
 namespace {
@@ -42,11 +43,7 @@ const Scene& scene() {
 }
 
 void expect_same(const BatchResult& a, const BatchResult& b) {
-  ASSERT_EQ(a.results.size(), b.results.size());
-  for (std::size_t i = 0; i < a.results.size(); ++i) {
-    EXPECT_EQ(a.results[i].hit, b.results[i].hit) << i;
-    EXPECT_EQ(a.results[i].toi, b.results[i].toi) << i;
-  }
+  testing::expect_same_answers(a, b);
   EXPECT_EQ(a.earliest_toi, b.earliest_toi);
   EXPECT_EQ(a.counters.hits, b.counters.hits);
 }
