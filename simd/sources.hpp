@@ -89,8 +89,8 @@ class PackedPositions {
             row[c + 3] = stop(v, c);
           }
           row[6] = row[7] = 0;
-          // x - x is 0 for finite x, a NaN otherwise; the sum of a row's
-          // too (x86 keeps no flag here: no branch per coordinate).
+          // x - x is 0 for finite x and a NaN otherwise, and so is the sum
+          // of a row's: one test a row, no branch per coordinate.
           double zero = 0;
           for (int c = 0; c < 6; ++c) zero += row[c] - row[c];
           finite &= zero == 0;

@@ -60,14 +60,8 @@ struct ScaledDifferences {
 }  // namespace
 
 bool sign_filter_culls(const ScaledQuery& query, bool certified, bool subdivide) {
-  Vector3<double> relative[3][2];
-  double largest[3][2];
-  for (int i = 0; i < 3; ++i)
-    for (int tau = 0; tau < 2; ++tau) {
-      relative[i][tau] = as_vector(query.relative[i][tau]);
-      largest[i][tau] = largest_magnitude(relative[i][tau]);
-    }
-  return sign_filter_culls(relative, largest, coefficient_error(query.absolute_error).floor, certified,
+  const ScaledDifferences frame(query);
+  return sign_filter_culls(frame.relative, frame.largest, coefficient_error(query.absolute_error).floor, certified,
                            subdivide);
 }
 
@@ -102,10 +96,6 @@ FilterVerdict pieces_stage(Kind kind, const DirectFrame& direct, const Separatio
   }
   return verdict;
 }
-
-// The swept boxes run before every other filter, in the sign filter's
-// frames: comparisons only, and on a broad phase's padded list they rule
-// out most candidates by themselves.
 
 // run_filters for a call with separations: the same frames, the filters of
 // docs/design.md §11.
@@ -156,7 +146,9 @@ FilterVerdict run_filters(Kind kind, const Query& query, const FilterSettings& s
   if (settings.within) return run_filters_within(kind, query, settings);
   FilterVerdict verdict;
   // Each filter in its direct frame where that applies (nearly always):
-  // most queries end there, without the scaled frame's normalisation.
+  // most queries end there, without the scaled frame's normalisation. The
+  // swept boxes first, in the sign filter's frames: comparisons only, and
+  // on a broad phase's padded list they rule out most candidates alone.
   const DirectFrame direct = direct_frame(kind, query);
   const bool in_window = direct.within(kDirectLowest, kDirectHighest);
   verdict.swept_box = settings.swept_box && in_window &&
