@@ -433,13 +433,17 @@ struct ScaledFrame {
 
 // Whether a source's coordinates are all finite, known before its lanes
 // run: a mesh's packed rows say so (PackedPositions); raw queries do not.
+template <class Source>
+constexpr bool kPacked = true;  // may know: a mesh's packed rows
 template <Kind K>
-bool known_finite(const RawQueriesOf<K>&) {
-  return false;
-}
-template <class MeshSource>
-bool known_finite(const MeshSource& mesh) {
-  return mesh.positions.finite;
+constexpr bool kPacked<RawQueriesOf<K>> = false;
+template <class Source>
+bool known_finite(const Source& source) {
+  if constexpr (kPacked<Source>) {
+    return source.positions.finite;
+  } else {
+    return false;
+  }
 }
 
 // A group's differences x_{i+2}(tau) - x_1(tau) in the input's units, each
@@ -460,9 +464,12 @@ struct DirectDifferences {
     // Only the differences: the positions, kept for the rare scaled frame,
     // spilled to the stack throughout (it loads them again).
     Gather<Arch>::differences(source, group, relative);
-    for (int i = 0; i < 3; ++i)
-      for (int tau = 0; tau < 2; ++tau) largest[i][tau] = Magnitudes<Arch>::largest(relative[i][tau]);
-    overall = pairwise<6>(&largest[0][0], Magnitudes<Arch>::larger);
+    measure();
+  }
+  // Differences already taken.
+  DirectDifferences(const typename L::Vector (&taken)[3][2], bool finite) : finite_input(finite) {
+    std::copy(&taken[0][0], &taken[0][0] + 6, &relative[0][0]);
+    measure();
   }
 
   // Lanes whose largest lies in [lowest, highest], so finite but for a NaN
@@ -483,6 +490,13 @@ struct DirectDifferences {
     }
     const Double sum = pairwise<18>(component, [](const Double& a, const Double& b) { return a + b; });
     return within(lowest, highest) & (sum == sum);
+  }
+
+ private:
+  void measure() {
+    for (int i = 0; i < 3; ++i)
+      for (int tau = 0; tau < 2; ++tau) largest[i][tau] = Magnitudes<Arch>::largest(relative[i][tau]);
+    overall = pairwise<6>(&largest[0][0], Magnitudes<Arch>::larger);
   }
 };
 
@@ -519,10 +533,18 @@ template <class Arch, class Source>
   const Double separation =
       settings.within ? frame.scaled_length(lane_separations<Arch>(settings, group)) : Double(0.0);
   FirstCulls culled;
-  if (settings.swept_box)
+  if (settings.swept_box && settings.within) {
     culled.swept_box = lane_bits<Arch>(
-        frame.evaluable & reference::swept_boxes_apart(source.kind, frame.relative, pairwise<6>(&largest[0][0], Magnitudes<Arch>::larger),
-                                                       settings.within, separation, frame.absolute_error));
+        frame.evaluable & reference::swept_boxes_apart(source.kind, frame.relative,
+                                                       pairwise<6>(&largest[0][0], Magnitudes<Arch>::larger), true,
+                                                       separation, frame.absolute_error));
+  } else if (settings.swept_box) {
+    // Without a separation the direct frame's boxes, for finite input.
+    typename Lanes<Arch>::Vector relative[3][2];
+    Gather<Arch>::differences(source, group, relative);
+    culled.swept_box = lane_bits<Arch>(
+        frame.evaluable & reference::swept_boxes_apart(source.kind, relative, Double(0.0), false, Double(0.0)));
+  }
   if (!settings.sign) return culled;
   const Double floor = reference::coefficient_floor(frame.absolute_error);
   const Mask sign = settings.within ? Mask(reference::plane_distance_culls(source.kind, frame.relative, largest, floor,
@@ -606,6 +628,34 @@ template <class Arch, bool within, class Source, class Group>
     culled.swept_box |= scaled_lanes & scaled.swept_box;
     culled.sign |= scaled_lanes & scaled.sign;
   }
+  culled.sign &= lanes_in_use & ~culled.swept_box;
+  return culled;
+}
+
+// The first pass without a separation on a source known finite (a mesh's
+// packed rows say so): there the boxes hold in the direct frame whatever
+// the magnitudes (reference::run_filters), so those and the frame's window
+// wait for the sign filter, which only groups with a lane left pay.
+template <class Arch, class Source, class Group>
+[[gnu::flatten]] FirstCulls finite_whole_interval_culled_lanes(const Source& source, const Group& group,
+                                                               std::size_t count,
+                                                               const reference::FilterSettings& settings) {
+  using Double = typename Lanes<Arch>::Double;
+  typename Lanes<Arch>::Vector relative[3][2];
+  Gather<Arch>::differences(source, group, relative);
+  const std::uint32_t lanes_in_use = (1u << count) - 1;
+  FirstCulls culled;
+  if (settings.swept_box)
+    culled.swept_box = lanes_in_use & lane_bits<Arch>(reference::swept_boxes_apart(source.kind, relative, Double(0.0),
+                                                                                   false, Double(0.0)));
+  if (!settings.sign || culled.swept_box == lanes_in_use) return culled;
+  const DirectDifferences<Arch> differences(relative, true);
+  const auto direct = differences.within(reference::kDirectLowest, reference::kDirectHighest);
+  const auto test = reference::sign_test(differences.relative, differences.largest,
+                                         Double(reference::direct_coefficient_error().floor), settings.certified);
+  culled.sign = lane_bits<Arch>(direct & test.whole());
+  const std::uint32_t scaled_lanes = ~lane_bits<Arch>(direct) & lanes_in_use & ~culled.swept_box;
+  if (scaled_lanes != 0) culled.sign |= scaled_lanes & first_culled_in_scaled_frame<Arch>(source, group, settings).sign;
   culled.sign &= lanes_in_use & ~culled.swept_box;
   return culled;
 }
@@ -743,6 +793,42 @@ template <class Arch, class MeshSource>
     _mm_prefetch(reinterpret_cast<const char*>(ahead + line), _MM_HINT_T0);
 }
 
+// The first pass over candidates [begin, end), compacting its survivors:
+// `finite` for a source known finite in a call without separations.
+template <class Arch, bool within, bool finite, class Source>
+std::size_t first_pass(const Source& source, std::size_t begin, std::size_t end,
+                       const reference::FilterSettings& settings, std::uint32_t* survivors, FilterCounts& counts) {
+  constexpr std::size_t lanes = Lanes<Arch>::size;
+  const auto culled_lanes = [&](const auto& group, std::size_t count) {
+    if constexpr (finite) {
+      return finite_whole_interval_culled_lanes<Arch>(source, group, count, settings);
+    } else {
+      return whole_interval_culled_lanes<Arch, within>(source, group, count, settings);
+    }
+  };
+  std::size_t kept = 0;
+  for (std::size_t first = begin; first < end; first += lanes) {
+    const std::size_t count = std::min(end - first, lanes);
+    prefetch_candidates<Arch>(source, first);
+    check_ids<Arch>(source, first, count);  // every candidate passes here first, whatever the settings
+    FirstCulls culls;
+    if ((settings.sign || settings.swept_box) && count == lanes) {
+      culls = culled_lanes(ConsecutiveGroup<Arch>{static_cast<std::int64_t>(first)}, count);
+    } else if (settings.sign || settings.swept_box) {
+      ListedGroup<Arch> group;  // the last few; spare lanes repeat the last
+      for (std::size_t j = 0; j < lanes; ++j)
+        group.candidate[j] = static_cast<std::int64_t>(first + std::min(j, count - 1));
+      culls = culled_lanes(group, count);
+    }
+    counts.swept_box += static_cast<std::size_t>(__builtin_popcount(culls.swept_box));
+    counts.sign += static_cast<std::size_t>(__builtin_popcount(culls.sign));
+    const std::uint32_t culled = culls.swept_box | culls.sign;
+    const auto offset = static_cast<std::uint32_t>(first - begin);
+    kept += compress<Arch>(~culled & ((1u << count) - 1), offset, survivors + kept);
+  }
+  return kept;
+}
+
 // The filters over candidates [begin, end): see FilterFunction. The first
 // pass runs over all of them and compacts its survivors; the second runs
 // over those alone, in full lanes, and compacts them again; the third
@@ -753,25 +839,11 @@ std::size_t filter_range_of(const Source& source, std::size_t begin, std::size_t
                             FilterCounts& counts) {
   constexpr std::size_t lanes = Lanes<Arch>::size;
   std::size_t kept = 0;
-  for (std::size_t first = begin; first < end; first += lanes) {
-    const std::size_t count = std::min(end - first, lanes);
-    prefetch_candidates<Arch>(source, first);
-    check_ids<Arch>(source, first, count);  // every candidate passes here first, whatever the settings
-    FirstCulls culls;
-    if ((settings.sign || settings.swept_box) && count == lanes) {
-      const ConsecutiveGroup<Arch> group{static_cast<std::int64_t>(first)};
-      culls = whole_interval_culled_lanes<Arch, within>(source, group, count, settings);
-    } else if (settings.sign || settings.swept_box) {
-      ListedGroup<Arch> group;  // the last few; spare lanes repeat the last
-      for (std::size_t j = 0; j < lanes; ++j)
-        group.candidate[j] = static_cast<std::int64_t>(first + std::min(j, count - 1));
-      culls = whole_interval_culled_lanes<Arch, within>(source, group, count, settings);
-    }
-    counts.swept_box += static_cast<std::size_t>(__builtin_popcount(culls.swept_box));
-    counts.sign += static_cast<std::size_t>(__builtin_popcount(culls.sign));
-    const std::uint32_t culled = culls.swept_box | culls.sign;
-    const auto offset = static_cast<std::uint32_t>(first - begin);
-    kept += compress<Arch>(~culled & ((1u << count) - 1), offset, survivors + kept);
+  if constexpr (!within && kPacked<Source>) {
+    kept = known_finite(source) ? first_pass<Arch, within, true>(source, begin, end, settings, survivors, counts)
+                                : first_pass<Arch, within, false>(source, begin, end, settings, survivors, counts);
+  } else {
+    kept = first_pass<Arch, within, false>(source, begin, end, settings, survivors, counts);
   }
   // Survivors regrouped into full lanes, pass after pass: `cull` returns
   // the lanes it culls, counting them.

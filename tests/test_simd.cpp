@@ -203,13 +203,17 @@ TEST(SimdKernels, MatchTheReferenceFilterOnAdversarialQueries) {
   }
 }
 
-// On meshes of finite coordinates (the lanes then skip their NaN checks:
-// PackedPositions knows) and on one with NaN, infinite, huge and nearly
-// coincident vertices (they keep them).
+// On meshes of finite coordinates (the lanes then skip their NaN checks
+// and, without a separation, test the boxes before any magnitude:
+// PackedPositions knows), plain or with huge, overflowing, tiny and nearly
+// coincident vertices, and on one with NaN and infinite ones besides (the
+// lanes keep their checks).
 TEST(SimdKernels, MatchTheReferenceFilterOnMeshIndexLists) {
   const auto kernels = vector_kernels();
   if (kernels.empty()) GTEST_SKIP() << "no vector instruction set on this processor";
-  for (const bool poisoned : {false, true}) {
+  enum class Mesh { plain, extreme, poisoned };
+  for (const Mesh mesh : {Mesh::plain, Mesh::extreme, Mesh::poisoned}) {
+    const bool poisoned = mesh == Mesh::poisoned;
     std::mt19937_64 random(5);
     std::uniform_real_distribution<double> coordinate(-1, 1);
     const int vertices = 200, faces = 300, pairs = 20000;
@@ -219,13 +223,18 @@ TEST(SimdKernels, MatchTheReferenceFilterOnMeshIndexLists) {
         t0(i, c) = coordinate(random);
         t1(i, c) = t0(i, c) + 0.1 * coordinate(random);
       }
+    if (mesh != Mesh::plain) {
+      t0.row(13) *= 1e300, t1.row(13) *= 1e300;  // outside the direct frames' window
+      t1.row(17) = t0.row(17) = t0.row(19) + Eigen::RowVector3d::Constant(1e-300);
+      t1.row(19) = t0.row(19);
+      t0.row(23).setConstant(1.5e308), t1.row(23).setConstant(1.6e308);  // differences overflow
+      t0.row(29).setConstant(-1.5e308), t1.row(29).setConstant(-1.4e308);
+      t0.row(31) *= 1e-310, t1.row(31) *= 1e-310;  // subnormal
+    }
     if (poisoned) {
       t0(3, 1) = std::numeric_limits<double>::quiet_NaN();
       t1(7, 2) = std::numeric_limits<double>::infinity();
       t0(11, 0) = -std::numeric_limits<double>::infinity();
-      t0.row(13) *= 1e300, t1.row(13) *= 1e300;  // outside the direct frames' window
-      t1.row(17) = t0.row(17) = t0.row(19) + Eigen::RowVector3d::Constant(1e-300);
-      t1.row(19) = t0.row(19);
     }
     Eigen::MatrixXi face_matrix(faces, 3);
     std::uniform_int_distribution<int> vertex(0, vertices - 1), face(0, faces - 1);
@@ -246,9 +255,9 @@ TEST(SimdKernels, MatchTheReferenceFilterOnMeshIndexLists) {
       const auto ee_expected = survivors(simd::kScalarKernels.edge_edge, ee_source, 1, pairs, settings);
       for (const simd::FilterKernels* k : kernels) {
         EXPECT_EQ(survivors(k->vertex_face, vf_source, 1, pairs, settings), vf_expected)
-            << to_string(k->isa) << " " << describe(settings) << (poisoned ? " poisoned" : "");
+            << to_string(k->isa) << " " << describe(settings) << " mesh " << static_cast<int>(mesh);
         EXPECT_EQ(survivors(k->edge_edge, ee_source, 1, pairs, settings), ee_expected)
-            << to_string(k->isa) << " " << describe(settings) << (poisoned ? " poisoned" : "");
+            << to_string(k->isa) << " " << describe(settings) << " mesh " << static_cast<int>(mesh);
       }
     }
   }

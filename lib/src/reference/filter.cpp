@@ -151,11 +151,13 @@ FilterVerdict run_filters(Kind kind, const Query& query, const FilterSettings& s
   // on a broad phase's padded list they rule out most candidates alone.
   const DirectFrame direct = direct_frame(kind, query);
   const bool in_window = direct.within(kDirectLowest, kDirectHighest);
-  verdict.swept_box = settings.swept_box && in_window &&
+  // Without a separation the boxes' comparisons are exact in any frame
+  // (swept_box_filter.hpp): the direct one serves every finite query, in
+  // its window or not (a window implies finite input).
+  verdict.swept_box = settings.swept_box && (in_window || all_finite(query)) &&
                       swept_boxes_apart(kind, direct.relative, direct.overall, false, 0.0);
   if (verdict.swept_box) return verdict;
   const bool sign_scaled = settings.sign && !in_window;
-  const bool boxes_scaled = settings.swept_box && !in_window;
   if (settings.sign && !sign_scaled)
     verdict.sign = sign_filter_culls(direct.relative, direct.largest, direct_coefficient_error().floor,
                                      settings.certified, settings.subdivide);
@@ -167,12 +169,10 @@ FilterVerdict run_filters(Kind kind, const Query& query, const FilterSettings& s
     verdict.separation = separation_filter_culls(kind, direct.relative, error.relative, error.floor, &measured);
     return pieces_stage(kind, direct, measured, settings, 0.0, verdict);
   }
-  if (!sign_scaled && !boxes_scaled && !separation_due) return verdict;
+  if (!sign_scaled && !separation_due) return verdict;
   const ScaledQuery scaled = scale_query(kind, query);
   if (!scaled.finite || scaled.coincident) return verdict;  // for the solver's own checks
   const ScaledDifferences frame(scaled);
-  verdict.swept_box = boxes_scaled && swept_boxes_apart(kind, frame.relative, frame.overall, false, 0.0);
-  if (verdict.swept_box) return verdict;
   if (sign_scaled)
     verdict.sign = sign_filter_culls(frame.relative, frame.largest, coefficient_floor(scaled.absolute_error),
                                      settings.certified, settings.subdivide);
