@@ -290,6 +290,24 @@ TEST(InclusionSolver, StopsAtTheIterationLimitConservatively) {
   EXPECT_LE(outcome.toi, 0.5);
 }
 
+// Edge x1x2 stands on the plane of the still edge x3x4, and x1 crosses
+// x3x4 next to x3 at t = 1/3: a contact at an edge's end (u = 0), where no
+// inside test is certain. The cubic narrows time to its root first; a
+// search at every halving used to spend a thousand boxes (the exact
+// stage's budget) and escalate.
+TEST(InclusionSolver, SettlesAContactAtAnEdgesEndWithinTheExactStagesBudget) {
+  Query query;
+  const Vec3 x1(0.01, 0, -0.1), x1_end(0.017, 0, 0.2), up(0.3, 1, 0.2);
+  query.points = {x1, x1 + up, Vec3(0, 0, 0), Vec3(1, 0, 0), x1_end, x1_end + up, Vec3(0, 0, 0), Vec3(1, 0, 0)};
+  SolverSettings settings;
+  settings.max_iterations = Options{}.exact_stage_iterations;
+  const SolverOutcome outcome = solve_inclusion(Kind::edge_edge, scale_query(Kind::edge_edge, query), settings);
+  EXPECT_TRUE(outcome.hit);
+  EXPECT_FALSE(outcome.undecided);
+  EXPECT_LE(outcome.toi, 1.0 / 3);
+  EXPECT_GE(outcome.toi, 1.0 / 3 - settings.toi_tolerance);
+}
+
 // Positions relative to x1 held still (zero-radius balls), in the order of
 // PositionBalls: x2, x3, x4.
 PositionBalls still(const Vec3& x2, const Vec3& x3, const Vec3& x4) {

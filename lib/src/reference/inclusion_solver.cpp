@@ -139,6 +139,20 @@ class InclusionSolver {
       // A certain root and a certain inside test over the interval: a
       // contact lies in it, no need to search the parameters.
       const bool contact = cubic.certain_root && certainly_inside(kind_, balls);
+      if (!contact && cubic.certain_root && time.width() > settings_.toi_tolerance) {
+        // A certain root the inside test cannot settle (a contact at an
+        // edge's end, say): the cubic's signs narrow the interval to its
+        // first root first. Searched at every halving instead, the
+        // parameters could neither exclude such a contact nor find it (the
+        // interval's motion keeps their image wide) and spent the budget.
+        const Narrowed narrowed = narrow_to_first_root(time, settings_.toi_tolerance, cubic.halved);
+        if (narrowed.first.width() < time.width()) {
+          push(heap, narrowed.first);
+          if (!narrowed.rest_root_free && narrowed.first.high < time.high)
+            push(heap, Interval{narrowed.first.high, time.high});
+          continue;
+        }
+      }
       if (!contact) {
         // Wide intervals get a small parameter budget: their search mostly
         // ends unresolved, and splitting time is cheaper.
