@@ -295,37 +295,43 @@ std::uint32_t lane_bits(const xsimd::batch_bool<double, Arch>& mask) {
   }
 }
 
+// Eight values compressed to those of the set bits of `keep` in a register
+// and stored whole (AVX-512 only): the compress-store to memory is slow on
+// some processors (microcoded on AMD Zen 4).
+template <class Arch, class Values>
+std::size_t store_compressed(std::uint32_t keep, const Values& values, std::uint32_t* out) {
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_maskz_compress_epi32(static_cast<__mmask8>(keep), values));
+  return static_cast<std::size_t>(__builtin_popcount(keep));
+}
+
 // Writes values[k] for every set bit k of `keep` (k < 8), in order; returns
-// how many.
+// how many. `room`: out has room for all eight, which it may then write (a
+// full group's, where what follows is yet to be written or already read).
 template <class Arch>
-std::size_t compress(std::uint32_t keep, const std::uint32_t* values, std::uint32_t* out) {
+std::size_t compress(std::uint32_t keep, const std::uint32_t* values, std::uint32_t* out, bool room) {
   if constexpr (std::is_base_of_v<xsimd::avx512f, Arch>) {
-    // A compress-store: no branch per survivor.
-    const __m256i loaded = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(values));
-    _mm256_mask_compressstoreu_epi32(out, static_cast<__mmask8>(keep), loaded);
-    return static_cast<std::size_t>(__builtin_popcount(keep));
-  } else {
-    std::uint32_t loaded[8];
-    std::copy(values, values + 8, loaded);
-    std::size_t n = 0;
-    for (; keep != 0; keep &= keep - 1) out[n++] = loaded[__builtin_ctz(keep)];
-    return n;
+    if (room) return store_compressed<Arch>(keep, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(values)), out);
   }
+  std::uint32_t loaded[8];
+  std::copy(values, values + 8, loaded);  // out may overlap values
+  std::size_t n = 0;
+  for (; keep != 0; keep &= keep - 1) out[n++] = loaded[__builtin_ctz(keep)];
+  return n;
 }
 
 // The same for values first, first + 1, ..., first + 7.
 template <class Arch>
-std::size_t compress(std::uint32_t keep, std::uint32_t first, std::uint32_t* out) {
+std::size_t compress(std::uint32_t keep, std::uint32_t first, std::uint32_t* out, bool room) {
   if constexpr (std::is_base_of_v<xsimd::avx512f, Arch>) {
-    const __m256i values = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(first)),
-                                            _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
-    _mm256_mask_compressstoreu_epi32(out, static_cast<__mmask8>(keep), values);
-    return static_cast<std::size_t>(__builtin_popcount(keep));
-  } else {
-    std::size_t n = 0;
-    for (; keep != 0; keep &= keep - 1) out[n++] = first + static_cast<std::uint32_t>(__builtin_ctz(keep));
-    return n;
+    if (room)
+      return store_compressed<Arch>(keep,
+                                    _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(first)),
+                                                     _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)),
+                                    out);
   }
+  std::size_t n = 0;
+  for (; keep != 0; keep &= keep - 1) out[n++] = first + static_cast<std::uint32_t>(__builtin_ctz(keep));
+  return n;
 }
 
 // Largest component magnitudes, exact for vectors without a NaN. With a NaN
@@ -824,7 +830,7 @@ std::size_t first_pass(const Source& source, std::size_t begin, std::size_t end,
     counts.sign += static_cast<std::size_t>(__builtin_popcount(culls.sign));
     const std::uint32_t culled = culls.swept_box | culls.sign;
     const auto offset = static_cast<std::uint32_t>(first - begin);
-    kept += compress<Arch>(~culled & ((1u << count) - 1), offset, survivors + kept);
+    kept += compress<Arch>(~culled & ((1u << count) - 1), offset, survivors + kept, count == lanes);
   }
   return kept;
 }
@@ -859,7 +865,7 @@ std::size_t filter_range_of(const Source& source, std::size_t begin, std::size_t
         group.candidate[j] = static_cast<std::int64_t>(begin + offsets[j]);
       }
       const std::uint32_t keep = ~cull(group, count) & ((1u << count) - 1);
-      kept += compress<Arch>(keep, offsets, survivors + kept);
+      kept += compress<Arch>(keep, offsets, survivors + kept, count == lanes);
     }
   };
   if ((settings.sign && settings.subdivide && !within) || settings.separation)
