@@ -24,6 +24,7 @@
 #include "reference/scaled_query.hpp"
 #include "reference/sign_filter.hpp"
 #include "reference/swept_box_filter.hpp"
+#include "simd/coarse_boxes.hpp"
 #include "simd/filter.hpp"
 #include "simd/sources.hpp"
 
@@ -516,6 +517,11 @@ typename Lanes<Arch>::Double lane_separations(const reference::FilterSettings& s
   return Double::load_aligned(values);
 }
 
+// Whether the first pass takes the coarse boxes (coarse_boxes.hpp): eight
+// lanes of doubles, sixteen of floats.
+template <class Arch>
+constexpr bool kCoarseBoxes = std::is_base_of_v<xsimd::avx512dq, Arch>;
+
 // What the first pass culls, bit k for lane k.
 struct FirstCulls {
   std::uint32_t swept_box = 0;  // by the swept boxes
@@ -813,7 +819,36 @@ std::size_t first_pass(const Source& source, std::size_t begin, std::size_t end,
     }
   };
   std::size_t kept = 0;
-  for (std::size_t first = begin; first < end; first += lanes) {
+  const auto keep = [&](const FirstCulls& culls, std::size_t first, std::size_t count) {
+    counts.swept_box += static_cast<std::size_t>(__builtin_popcount(culls.swept_box));
+    counts.sign += static_cast<std::size_t>(__builtin_popcount(culls.sign));
+    const std::uint32_t culled = culls.swept_box | culls.sign;
+    const auto offset = static_cast<std::uint32_t>(first - begin);
+    kept += compress<Arch>(~culled & ((1u << count) - 1), offset, survivors + kept, count == lanes);
+  };
+  std::size_t first = begin;
+  if constexpr (finite && kCoarseBoxes<Arch>) {
+    // Sixteen candidates at a time through the coarse boxes first: a group
+    // of eight they settle needs nothing more (coarse_boxes.hpp).
+    if (settings.swept_box && source.positions.coarse != nullptr) {
+      constexpr std::uint32_t all = (1u << lanes) - 1;
+      for (; first + 2 * lanes <= end; first += 2 * lanes) {
+        for (std::size_t half = 0; half < 2; ++half) {
+          prefetch_candidates<Arch>(source, first + half * lanes);
+          check_ids<Arch>(source, first + half * lanes, lanes);
+        }
+        const std::uint32_t apart = CoarseBoxes<Source>::apart(source, first);
+        for (std::size_t half = 0; half < 2; ++half) {
+          const std::size_t group = first + half * lanes;
+          keep(((apart >> (half * lanes)) & all) == all
+                   ? FirstCulls{.swept_box = all}
+                   : culled_lanes(ConsecutiveGroup<Arch>{static_cast<std::int64_t>(group)}, lanes),
+               group, lanes);
+        }
+      }
+    }
+  }
+  for (; first < end; first += lanes) {
     const std::size_t count = std::min(end - first, lanes);
     prefetch_candidates<Arch>(source, first);
     check_ids<Arch>(source, first, count);  // every candidate passes here first, whatever the settings
@@ -826,11 +861,7 @@ std::size_t first_pass(const Source& source, std::size_t begin, std::size_t end,
         group.candidate[j] = static_cast<std::int64_t>(first + std::min(j, count - 1));
       culls = culled_lanes(group, count);
     }
-    counts.swept_box += static_cast<std::size_t>(__builtin_popcount(culls.swept_box));
-    counts.sign += static_cast<std::size_t>(__builtin_popcount(culls.sign));
-    const std::uint32_t culled = culls.swept_box | culls.sign;
-    const auto offset = static_cast<std::uint32_t>(first - begin);
-    kept += compress<Arch>(~culled & ((1u << count) - 1), offset, survivors + kept, count == lanes);
+    keep(culls, first, count);
   }
   return kept;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -50,10 +51,15 @@ inline RawQueries raw_queries(Kind kind, const Query* queries, std::size_t count
 // vertex's six coordinates at once (and transposes) instead of gathering
 // them one by one.
 inline constexpr int kRowDoubles = 8;
+// The same rows coarse (coarse_boxes.hpp), at the same offsets: x, y, z at
+// t0 and t1 rounded to floats, a bound e on each one's rounding, a zero.
+inline constexpr int kCoarseFloats = kRowDoubles;
 struct MeshPositions {
   const double* rows;  // 64-byte aligned
   std::int64_t vertices;
   bool finite;  // no coordinate is a NaN or infinite: no difference is a NaN
+  // nullptr unless every coordinate is finite and below 2^100 in magnitude.
+  const float* coarse = nullptr;  // 64-byte aligned
 };
 
 // Where vertex v's row starts among MeshPositions::rows. Always inlined:
@@ -67,11 +73,7 @@ class PackedPositions {
  public:
   // Room for `vertices` rows; pack() fills them.
   explicit PackedPositions(std::int64_t vertices)
-      : vertices_(vertices),
-        rows_(static_cast<double*>(::operator new[](
-                  sizeof(double) * kRowDoubles * static_cast<std::size_t>(std::max<std::int64_t>(vertices, 1)),
-                  std::align_val_t(64))),
-              Free{}) {}
+      : vertices_(vertices), rows_(allocate<double>(vertices)), coarse_(allocate<float>(vertices)) {}
   // All rows at once.
   PackedPositions(const PositionsView& t0, const PositionsView& t1) : PackedPositions(t0.rows()) {
     pack(t0, t1, 0, t0.rows());
@@ -79,7 +81,7 @@ class PackedPositions {
 
   // Rows [begin, end): callers may fill disjoint ranges in parallel.
   void pack(const PositionsView& t0, const PositionsView& t1, std::int64_t begin, std::int64_t end) {
-    bool finite = true;
+    bool finite = true, coarse = true;
     t0.visit([&](const auto& start) {
       t1.visit([&](const auto& stop) {
         for (std::int64_t v = begin; v < end; ++v) {
@@ -91,25 +93,54 @@ class PackedPositions {
           row[6] = row[7] = 0;
           // x - x is 0 for finite x and a NaN otherwise, and so is the sum
           // of a row's: one test a row, no branch per coordinate.
-          double zero = 0;
-          for (int c = 0; c < 6; ++c) zero += row[c] - row[c];
+          double zero = 0, largest = 0;
+          for (int c = 0; c < 6; ++c) zero += row[c] - row[c], largest = std::max(largest, std::fabs(row[c]));
           finite &= zero == 0;
+          coarse &= largest <= kCoarseLimit;  // false for a NaN too
+          pack_coarse(row, largest, coarse_.get() + row_start(v));
         }
       });
     });
     if (!finite) finite_.store(false, std::memory_order_relaxed);
+    if (!coarse) coarse_usable_.store(false, std::memory_order_relaxed);
   }
 
   // The rows, once pack() has filled them all.
-  MeshPositions view() const { return {rows_.get(), vertices_, finite_.load(std::memory_order_relaxed)}; }
+  MeshPositions view() const {
+    const bool finite = finite_.load(std::memory_order_relaxed);
+    const bool coarse = finite && coarse_usable_.load(std::memory_order_relaxed);
+    return {rows_.get(), vertices_, finite, coarse ? coarse_.get() : nullptr};
+  }
 
  private:
+  static constexpr double kCoarseLimit = 0x1p100;
+  // A row's floats, and e >= 2^-24 |x| + 2^-149 for its largest |x|: float
+  // rounding to nearest errs by at most 2^-24 |x|, or 2^-150 below the
+  // normal range. e rounded up.
+  // Beyond the limit (unused then) zeros: such a double may not fit a float.
+  static void pack_coarse(const double* row, double largest, float* coarse) {
+    const bool fits = largest <= kCoarseLimit;
+    for (int c = 0; c < 6; ++c) coarse[c] = fits ? static_cast<float>(row[c]) : 0.0F;
+    const double bound = 0x1p-24 * (fits ? largest : 0.0) + 0x1p-149;
+    float e = static_cast<float>(bound);
+    if (static_cast<double>(e) < bound) e = std::nextafter(e, 1.0F);
+    coarse[6] = e;
+    coarse[7] = 0;
+  }
+
   struct Free {
-    void operator()(double* p) const { ::operator delete[](p, std::align_val_t(64)); }
+    void operator()(void* p) const { ::operator delete[](p, std::align_val_t(64)); }
   };
+  template <class T>
+  static std::unique_ptr<T[], Free> allocate(std::int64_t vertices) {
+    const auto rows = static_cast<std::size_t>(std::max<std::int64_t>(vertices, 1));
+    return {static_cast<T*>(::operator new[](sizeof(T) * kRowDoubles * rows, std::align_val_t(64))), Free{}};
+  }
   std::int64_t vertices_;
   std::unique_ptr<double[], Free> rows_;
+  std::unique_ptr<float[], Free> coarse_;
   std::atomic<bool> finite_{true};
+  std::atomic<bool> coarse_usable_{true};
 };
 
 // Faces, one row of four per face: where its three corners' rows start

@@ -207,23 +207,32 @@ TEST(SimdKernels, MatchTheReferenceFilterOnAdversarialQueries) {
 // and, without a separation, test the boxes before any magnitude:
 // PackedPositions knows), plain or with huge, overflowing, tiny and nearly
 // coincident vertices, and on one with NaN and infinite ones besides (the
-// lanes keep their checks).
+// lanes keep their checks). `fine`: boxes whose gaps lie about where the
+// coarse boxes in floats stop culling (at 1000, gaps of about 1e-3 against
+// float roundings of 6e-5), with float-subnormal and 1e25 vertices among
+// them; the coarse boxes run there (AVX-512).
 TEST(SimdKernels, MatchTheReferenceFilterOnMeshIndexLists) {
   const auto kernels = vector_kernels();
   if (kernels.empty()) GTEST_SKIP() << "no vector instruction set on this processor";
-  enum class Mesh { plain, extreme, poisoned };
-  for (const Mesh mesh : {Mesh::plain, Mesh::extreme, Mesh::poisoned}) {
+  enum class Mesh { plain, fine, extreme, poisoned };
+  for (const Mesh mesh : {Mesh::plain, Mesh::fine, Mesh::extreme, Mesh::poisoned}) {
     const bool poisoned = mesh == Mesh::poisoned;
     std::mt19937_64 random(5);
     std::uniform_real_distribution<double> coordinate(-1, 1);
     const int vertices = 200, faces = 300, pairs = 20000;
     Eigen::MatrixXd t0(vertices, 3), t1(vertices, 3);
+    const double offset = mesh == Mesh::fine ? 1000 : 0, spread = mesh == Mesh::fine ? 3e-3 : 1;
     for (int i = 0; i < vertices; ++i)
       for (int c = 0; c < 3; ++c) {
-        t0(i, c) = coordinate(random);
-        t1(i, c) = t0(i, c) + 0.1 * coordinate(random);
+        t0(i, c) = offset + spread * coordinate(random);
+        t1(i, c) = t0(i, c) + 0.1 * spread * coordinate(random);
       }
-    if (mesh != Mesh::plain) {
+    if (mesh == Mesh::fine) {
+      t0.row(5) *= 1e-43, t1.row(5) *= 1e-43;  // below floats' normal range
+      t0.row(9) *= 1e-43, t1.row(9) = t0.row(9) * 2;
+      t0.row(37) *= 1e22, t1.row(37) *= 1e22;
+    }
+    if (mesh == Mesh::extreme || poisoned) {
       t0.row(13) *= 1e300, t1.row(13) *= 1e300;  // outside the direct frames' window
       t1.row(17) = t0.row(17) = t0.row(19) + Eigen::RowVector3d::Constant(1e-300);
       t1.row(19) = t0.row(19);
@@ -247,6 +256,7 @@ TEST(SimdKernels, MatchTheReferenceFilterOnMeshIndexLists) {
     const simd::PackedPositions packed(t0, t1);
     const simd::MeshPositions positions = packed.view();
     EXPECT_EQ(positions.finite, !poisoned);
+    EXPECT_EQ(positions.coarse != nullptr, mesh == Mesh::plain || mesh == Mesh::fine);
     const simd::PackedFaces packed_faces(face_matrix, faces);
     const simd::MeshVertexFace vf_source{positions, packed_faces.view(), vf.data()};
     const simd::MeshEdgeEdge ee_source{positions, ee.data()};
@@ -255,9 +265,9 @@ TEST(SimdKernels, MatchTheReferenceFilterOnMeshIndexLists) {
       const auto ee_expected = survivors(simd::kScalarKernels.edge_edge, ee_source, 1, pairs, settings);
       for (const simd::FilterKernels* k : kernels) {
         EXPECT_EQ(survivors(k->vertex_face, vf_source, 1, pairs, settings), vf_expected)
-            << to_string(k->isa) << " " << describe(settings) << " mesh " << static_cast<int>(mesh);
+            << to_string(k->isa) << " " << describe(settings) << " mesh ";
         EXPECT_EQ(survivors(k->edge_edge, ee_source, 1, pairs, settings), ee_expected)
-            << to_string(k->isa) << " " << describe(settings) << " mesh " << static_cast<int>(mesh);
+            << to_string(k->isa) << " " << describe(settings) << " mesh ";
       }
     }
   }
