@@ -829,23 +829,35 @@ std::size_t first_pass(const Source& source, std::size_t begin, std::size_t end,
   std::size_t first = begin;
   if constexpr (finite && kCoarseBoxes<Arch>) {
     // Sixteen candidates at a time through the coarse boxes first: a group
-    // of eight they settle needs nothing more (coarse_boxes.hpp).
+    // of eight they settle needs nothing more (coarse_boxes.hpp). They pay
+    // only where they settle most groups (a padded list: nine in ten), so
+    // a batch's first sixteen groups try them, and where they settle fewer
+    // than half of those (a tight list) the rest of the batch goes without.
     if (settings.swept_box && source.positions.coarse != nullptr) {
       constexpr std::uint32_t all = (1u << lanes) - 1;
-      for (; first + 2 * lanes <= end; first += 2 * lanes) {
+      // The groups at `at` and at + lanes; how many of them it settled.
+      const auto coarse_pair = [&](std::size_t at) {
         for (std::size_t half = 0; half < 2; ++half) {
-          prefetch_candidates<Arch>(source, first + half * lanes);
-          check_ids<Arch>(source, first + half * lanes, lanes);
+          prefetch_candidates<Arch>(source, at + half * lanes);
+          check_ids<Arch>(source, at + half * lanes, lanes);
         }
-        const std::uint32_t apart = CoarseBoxes<Source>::apart(source, first);
+        const std::uint32_t apart = CoarseBoxes<Source>::apart(source, at);
+        int settled = 0;
         for (std::size_t half = 0; half < 2; ++half) {
-          const std::size_t group = first + half * lanes;
-          keep(((apart >> (half * lanes)) & all) == all
-                   ? FirstCulls{.swept_box = all}
-                   : culled_lanes(ConsecutiveGroup<Arch>{static_cast<std::int64_t>(group)}, lanes),
+          const std::size_t group = at + half * lanes;
+          const bool settles = ((apart >> (half * lanes)) & all) == all;
+          settled += settles;
+          keep(settles ? FirstCulls{.swept_box = all}
+                       : culled_lanes(ConsecutiveGroup<Arch>{static_cast<std::int64_t>(group)}, lanes),
                group, lanes);
         }
-      }
+        return settled;
+      };
+      constexpr int kTrial = 8;  // pairs of groups
+      int tried = 0, settled = 0;
+      for (; tried < kTrial && first + 2 * lanes <= end; ++tried, first += 2 * lanes) settled += coarse_pair(first);
+      if (settled >= kTrial)
+        for (; first + 2 * lanes <= end; first += 2 * lanes) coarse_pair(first);
     }
   }
   for (; first < end; first += lanes) {

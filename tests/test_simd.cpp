@@ -207,10 +207,12 @@ TEST(SimdKernels, MatchTheReferenceFilterOnAdversarialQueries) {
 // and, without a separation, test the boxes before any magnitude:
 // PackedPositions knows), plain or with huge, overflowing, tiny and nearly
 // coincident vertices, and on one with NaN and infinite ones besides (the
-// lanes keep their checks). `fine`: boxes whose gaps lie about where the
-// coarse boxes in floats stop culling (at 1000, gaps of about 1e-3 against
-// float roundings of 6e-5), with float-subnormal and 1e25 vertices among
-// them; the coarse boxes run there (AVX-512).
+// lanes keep their checks). `fine`: ten clusters of vertices at 1000, 0.05
+// apart, each 6e-4 wide; most candidates join two clusters (apart, so the
+// coarse boxes in floats run throughout: AVX-512), one in twenty lies in
+// one cluster, with gaps of the order of floats' roundings there (6e-5);
+// float-subnormal and 1e25 vertices among them. A coarse threshold of 0
+// makes this test fail.
 TEST(SimdKernels, MatchTheReferenceFilterOnMeshIndexLists) {
   const auto kernels = vector_kernels();
   if (kernels.empty()) GTEST_SKIP() << "no vector instruction set on this processor";
@@ -221,10 +223,12 @@ TEST(SimdKernels, MatchTheReferenceFilterOnMeshIndexLists) {
     std::uniform_real_distribution<double> coordinate(-1, 1);
     const int vertices = 200, faces = 300, pairs = 20000;
     Eigen::MatrixXd t0(vertices, 3), t1(vertices, 3);
-    const double offset = mesh == Mesh::fine ? 1000 : 0, spread = mesh == Mesh::fine ? 3e-3 : 1;
+    const bool fine = mesh == Mesh::fine;
+    constexpr int kClusters = 10;  // vertex v in cluster v % kClusters
+    const double spread = fine ? 3e-4 : 1;
     for (int i = 0; i < vertices; ++i)
       for (int c = 0; c < 3; ++c) {
-        t0(i, c) = offset + spread * coordinate(random);
+        t0(i, c) = (fine ? 1000 + (c == 0 ? 0.05 * (i % kClusters) : 0) : 0) + spread * coordinate(random);
         t1(i, c) = t0(i, c) + 0.1 * spread * coordinate(random);
       }
     if (mesh == Mesh::fine) {
@@ -247,12 +251,26 @@ TEST(SimdKernels, MatchTheReferenceFilterOnMeshIndexLists) {
     }
     Eigen::MatrixXi face_matrix(faces, 3);
     std::uniform_int_distribution<int> vertex(0, vertices - 1), face(0, faces - 1);
+    // Fine: a face's corners in cluster f % kClusters; a candidate's two
+    // primitives in one cluster once in twenty, else in two.
+    std::uniform_int_distribution<int> cluster(0, kClusters - 1), member(0, vertices / kClusters - 1),
+        other(1, kClusters - 1), twentieth(0, 19);
+    const auto in_cluster = [&](int k) { return k + kClusters * member(random); };
+    const auto pair_of = [&](int k) { return twentieth(random) == 0 ? k : (k + other(random)) % kClusters; };
     for (int f = 0; f < faces; ++f)
-      for (int c = 0; c < 3; ++c) face_matrix(f, c) = vertex(random);
+      for (int c = 0; c < 3; ++c) face_matrix(f, c) = fine ? in_cluster(f % kClusters) : vertex(random);
     std::vector<std::array<int, 2>> vf(pairs);
     std::vector<std::array<int, 4>> ee(pairs);
-    for (auto& p : vf) p = {vertex(random), face(random)};
-    for (auto& e : ee) e = {vertex(random), vertex(random), vertex(random), vertex(random)};
+    for (auto& p : vf) {
+      const int k = cluster(random);
+      p = fine ? std::array{in_cluster(k), pair_of(k) + kClusters * (face(random) / kClusters)}
+               : std::array{vertex(random), face(random)};
+    }
+    for (auto& e : ee) {
+      const int k = cluster(random), l = pair_of(k);
+      e = fine ? std::array{in_cluster(k), in_cluster(k), in_cluster(l), in_cluster(l)}
+               : std::array{vertex(random), vertex(random), vertex(random), vertex(random)};
+    }
     const simd::PackedPositions packed(t0, t1);
     const simd::MeshPositions positions = packed.view();
     EXPECT_EQ(positions.finite, !poisoned);
