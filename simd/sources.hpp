@@ -51,14 +51,14 @@ inline RawQueries raw_queries(Kind kind, const Query* queries, std::size_t count
 // vertex's six coordinates at once (and transposes) instead of gathering
 // them one by one.
 inline constexpr int kRowDoubles = 8;
-// The same rows coarse (coarse_boxes.hpp), at the same offsets: x, y, z at
-// t0 and t1 rounded to floats, a bound e on each one's rounding, a zero.
-inline constexpr int kCoarseFloats = kRowDoubles;
 struct MeshPositions {
   const double* rows;  // 64-byte aligned
   std::int64_t vertices;
   bool finite;  // no coordinate is a NaN or infinite: no difference is a NaN
-  // nullptr unless every coordinate is finite and below 2^100 in magnitude.
+  // The same rows coarse, as many floats a row at the same offsets (for
+  // coarse_boxes.hpp): x, y, z at t0 and t1 rounded to floats, a bound on
+  // each one's rounding, a zero. nullptr unless every coordinate is finite
+  // and below 2^100 in magnitude.
   const float* coarse = nullptr;  // 64-byte aligned
 };
 
@@ -96,7 +96,7 @@ class PackedPositions {
           double zero = 0, largest = 0;
           for (int c = 0; c < 6; ++c) zero += row[c] - row[c], largest = std::max(largest, std::fabs(row[c]));
           finite &= zero == 0;
-          coarse &= largest <= kCoarseLimit;  // false for a NaN too
+          coarse &= largest <= kCoarseLimit;  // a NaN passes here, but not `finite`
           pack_coarse(row, largest, coarse_.get() + row_start(v));
         }
       });
@@ -116,8 +116,8 @@ class PackedPositions {
   static constexpr double kCoarseLimit = 0x1p100;
   // A row's floats, and e >= 2^-24 |x| + 2^-149 for its largest |x|: float
   // rounding to nearest errs by at most 2^-24 |x|, or 2^-150 below the
-  // normal range. e rounded up.
-  // Beyond the limit (unused then) zeros: such a double may not fit a float.
+  // normal range. e rounded up. Beyond the limit (the coarse rows unused
+  // then) zeros: such a double may not fit a float.
   static void pack_coarse(const double* row, double largest, float* coarse) {
     const bool fits = largest <= kCoarseLimit;
     for (int c = 0; c < 6; ++c) coarse[c] = fits ? static_cast<float>(row[c]) : 0.0F;
