@@ -13,9 +13,11 @@
 // 6.03 S + 2^-148 (the gap's own rounding included). A float gap above 8 S
 // thus leaves an exact gap above 0.96 S >= 2^-25 of every coordinate's
 // magnitude: far above what the double test's rounding can take from it,
-// so the double test culls the candidate too. Only where the coordinates
-// stay below 2^100 (the mesh has no coarse rows otherwise): no float
-// overflows.
+// so the double test culls the candidate too. With a separation s the
+// float threshold is 8 S plus s grown by 2^-20 and rounded up, beyond the
+// double test's growth of s (8 u) and its margin of 8 u of the largest
+// difference. Only where the coordinates stay below 2^100 (the mesh has no
+// coarse rows otherwise): no float overflows.
 #include <immintrin.h>
 
 #include <cstddef>
@@ -49,9 +51,11 @@ struct CoarseBoxes {
     for (int c = 4; c < 7; ++c) out[c] = _mm512_shuffle_f32x4(u[c - 4], u[c], 0xdd);
   }
 
-  // Bit j set where the coarse boxes of candidate first + j lie apart (j <
-  // 16). The mesh has coarse rows; ids checked by the caller.
-  [[gnu::noinline]] static std::uint32_t apart(const MeshSource& mesh, std::size_t first) {
+  // Bit j set where the coarse boxes of candidate first + j lie apart by
+  // more than lane j of `separation` (j < 16; the separations grown and
+  // rounded up, as separations() makes them). The mesh has coarse rows;
+  // ids checked by the caller.
+  [[gnu::noinline]] static std::uint32_t apart(const MeshSource& mesh, std::size_t first, __m512 separation) {
     const float* coarse = mesh.positions.coarse;
     const auto rows = [&](int j, int k) {
       const std::size_t a = first + static_cast<std::size_t>(j < 4 ? j : j + 4);
@@ -88,8 +92,20 @@ struct CoarseBoxes {
           _mm512_max_ps(_mm512_sub_ps(low[1][axis], high[0][axis]), _mm512_sub_ps(low[0][axis], high[1][axis]));
       widest = axis == 0 ? gap : _mm512_max_ps(widest, gap);
     }
-    return _mm512_cmp_ps_mask(widest, _mm512_mul_ps(bound, _mm512_set1_ps(8.0F)), _CMP_GT_OQ);
+    return _mm512_cmp_ps_mask(widest, _mm512_fmadd_ps(bound, _mm512_set1_ps(8.0F), separation), _CMP_GT_OQ);
   }
+
+  // Separations s as the coarse test takes them: s (1 + 2^-20), rounded up
+  // to a float (+inf beyond floats). `each`: sixteen doubles, else `all`.
+  static __m512 separations(const double* each, double all) {
+    const __m512d grow = _mm512_set1_pd(1 + 0x1p-20);
+    const auto up = [&](__m512d s) { return _mm512_cvt_roundpd_ps(_mm512_mul_pd(s, grow), kUp); };
+    if (each == nullptr) return _mm512_broadcast_f32x8(up(_mm512_set1_pd(all)));
+    return _mm512_insertf32x8(_mm512_castps256_ps512(up(_mm512_loadu_pd(each))), up(_mm512_loadu_pd(each + 8)), 1);
+  }
+
+ private:
+  static constexpr int kUp = _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC;
 };
 
 }  // namespace batchccd::simd

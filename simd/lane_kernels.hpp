@@ -827,7 +827,7 @@ std::size_t first_pass(const Source& source, std::size_t begin, std::size_t end,
     kept += compress<Arch>(~culled & ((1u << count) - 1), offset, survivors + kept, count == lanes);
   };
   std::size_t first = begin;
-  if constexpr (finite && kCoarseBoxes<Arch>) {
+  if constexpr (kPacked<Source> && kCoarseBoxes<Arch>) {
     // Sixteen candidates at a time through the coarse boxes first: a group
     // of eight they settle needs nothing more (coarse_boxes.hpp). They pay
     // only where they settle most groups (a padded list: nine in ten), so
@@ -835,13 +835,16 @@ std::size_t first_pass(const Source& source, std::size_t begin, std::size_t end,
     // than half of those (a tight list) the rest of the batch goes without.
     if (settings.swept_box && source.positions.coarse != nullptr) {
       constexpr std::uint32_t all = (1u << lanes) - 1;
+      const __m512 separation = CoarseBoxes<Source>::separations(nullptr, within ? settings.min_distance : 0.0);
       // The groups at `at` and at + lanes; how many of them it settled.
       const auto coarse_pair = [&](std::size_t at) {
         for (std::size_t half = 0; half < 2; ++half) {
           prefetch_candidates<Arch>(source, at + half * lanes);
           check_ids<Arch>(source, at + half * lanes, lanes);
         }
-        const std::uint32_t apart = CoarseBoxes<Source>::apart(source, at);
+        const bool each = within && settings.min_distances != nullptr;
+        const std::uint32_t apart = CoarseBoxes<Source>::apart(
+            source, at, each ? CoarseBoxes<Source>::separations(settings.min_distances + at, 0) : separation);
         int settled = 0;
         for (std::size_t half = 0; half < 2; ++half) {
           const std::size_t group = at + half * lanes;
