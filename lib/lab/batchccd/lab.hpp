@@ -53,6 +53,9 @@ struct Settings {
   // an axis, no contact. Comparisons only; the relative frame makes them
   // tighter than a broad phase's world boxes.
   bool swept_box_filter = true;
+  // Planar motion decided in its plane (docs/design.md §5a); false sends it
+  // down the generic path, where the exact stage decides it.
+  bool planar_path = true;
 };
 
 // A mode or a baseline: what the tools run side by side.

@@ -6,9 +6,11 @@
 
 #include "exact/exact_solver.hpp"
 #include "exact/first_root.hpp"
+#include "exact/plane_axis.hpp"
 #include "reference/cubic_solver.hpp"
 #include "reference/filter.hpp"
 #include "reference/inclusion_solver.hpp"
+#include "reference/planar_solver.hpp"
 #include "reference/scaled_query.hpp"
 #include "decider.hpp"
 
@@ -67,6 +69,26 @@ void settle_exactly(Kind kind, const Query& query, const Options& options, Evalu
   evaluation.result = outcome.hit ? QueryResult{true, outcome.toi, Status::ok} : QueryResult{};
 }
 
+// Planar motion (docs/design.md §5a): all eight points in one plane, where
+// the coplanarity cubic vanishes and says nothing. Decided in the plane;
+// what its signs cannot settle, exactly. False when the motion is not
+// planar (or the test cannot tell): the generic path decides then.
+bool decide_in_plane(Kind kind, const Query& query, const ScaledQuery& scaled, const Options& options,
+                     Decider decider, Evaluation& evaluation) {
+  const std::optional<int> axis = exact::exact_plane_axis(query);
+  if (!axis) return false;
+  const double toi_width =
+      decider == Decider::exact ? kExactToiWidth : std::max(options.toi_tolerance, 0x1p-45);
+  const PlanarOutcome outcome =
+      solve_planar(planar_shape(kind, query), scaled, *axis, options.tmax, toi_width);
+  if (!outcome.certain) {
+    settle_exactly(kind, query, options, evaluation);
+  } else if (outcome.hit) {
+    evaluation.result = {true, outcome.toi, Status::ok};
+  }
+  return true;
+}
+
 Evaluation evaluate(Kind kind, const Query& query, const Options& options, const lab::Settings& lab,
                     bool filtered) {
   Evaluation evaluation;
@@ -103,6 +125,8 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, const
     }
     return evaluation;
   }
+  if (decider != Decider::fast && lab.planar_path && decide_in_plane(kind, query, scaled, options, decider, evaluation))
+    return evaluation;
   SolverOutcome outcome = solve_inclusion(kind, scaled, solver_settings(options, decider));
   // A certain contact whose interval straddles tmax may come after it:
   // not certain of what counts.

@@ -1,0 +1,137 @@
+#include "exact/plane_axis.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "exact/expansion.hpp"
+
+namespace batchccd::exact {
+namespace {
+
+// The axis whose coordinate all eight points share, if any.
+std::optional<int> shared_coordinate(const Query& query) {
+  for (int axis = 0; axis < 3; ++axis) {
+    const double value = query.points[0][axis];
+    if (std::all_of(query.points.begin(), query.points.end(),
+                    [&](const Vec3& point) { return point[axis] == value; }))
+      return axis;
+  }
+  return std::nullopt;
+}
+
+// The query scaled by a power of two so that its largest coordinate lies
+// in [1, 2): exact, and the same for the query scaled by any power of two,
+// so the test below does not depend on units. nullopt when a nonzero
+// coordinate is below 2^-200 of the largest (it could be rounded here, and
+// expansions of it could underflow).
+std::optional<Query> normalized(const Query& query) {
+  double largest = 0;
+  for (const Vec3& point : query.points) largest = std::max(largest, point.cwiseAbs().maxCoeff());
+  if (largest == 0) return std::nullopt;
+  Query result;
+  const int exponent = -std::ilogb(largest);
+  for (int i = 0; i < 8; ++i) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const double coordinate = query.points[i][axis];
+      if (coordinate != 0 && std::fabs(coordinate) < 0x1p-200 * largest) return std::nullopt;
+      result.points[i][axis] = std::ldexp(coordinate, exponent);
+    }
+  }
+  return result;
+}
+
+// The sign of (b - a) x (c - a) projected along `axis`, exactly.
+int orientation_2d(const Vec3& a, const Vec3& b, const Vec3& c, int axis) {
+  const int x = (axis + 1) % 3, y = (axis + 2) % 3;
+  const auto ab_x = difference(b[x], a[x]), ab_y = difference(b[y], a[y]);
+  const auto ac_x = difference(c[x], a[x]), ac_y = difference(c[y], a[y]);
+  return (ab_x * ac_y - ab_y * ac_x).sign();
+}
+
+// Whether d may lie in the plane of a, b, c: orient3d(a, b, c, d) in
+// double is within its error bound of 0 (generous: a difference's rounding,
+// two products and two sums on each term's path, well under 32 u of the
+// permanent). Inputs normalized: nothing overflows or underflows.
+bool may_be_in_plane(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Vec3 u = a - d, v = b - d, w = c - d;
+  const double determinant = u[0] * (v[1] * w[2] - v[2] * w[1]) + u[1] * (v[2] * w[0] - v[0] * w[2]) +
+                             u[2] * (v[0] * w[1] - v[1] * w[0]);
+  const Vec3 au = u.cwiseAbs(), av = v.cwiseAbs(), aw = w.cwiseAbs();
+  const double permanent = au[0] * (av[1] * aw[2] + av[2] * aw[1]) + au[1] * (av[2] * aw[0] + av[0] * aw[2]) +
+                           au[2] * (av[0] * aw[1] + av[1] * aw[0]);
+  return std::fabs(determinant) <= 0x1p-48 * permanent;
+}
+
+// The plane through a, b, c in exact arithmetic: a point d lies in it when
+// (d - a) . n = 0 with n = (b - a) x (c - a), the normal formed once.
+class ExactPlane {
+ public:
+  ExactPlane(const Vec3& a, const Vec3& b, const Vec3& c) : a_(a) {
+    std::array<Expansion<2>, 3> ab, ac;
+    for (int i = 0; i < 3; ++i) {
+      ab[i] = difference(b[i], a[i]);
+      ac[i] = difference(c[i], a[i]);
+    }
+    for (int i = 0; i < 3; ++i) {
+      const int j = (i + 1) % 3, k = (i + 2) % 3;
+      normal_[i] = ab[j] * ac[k] - ab[k] * ac[j];
+    }
+  }
+
+  bool contains(const Vec3& d) const {
+    const auto term = [&](int i) { return difference(d[i], a_[i]) * normal_[i]; };
+    return (term(0) + term(1) + term(2)).sign() == 0;
+  }
+
+ private:
+  Vec3 a_;
+  std::array<Expansion<16>, 3> normal_;
+};
+
+double largest_component(const Vec3& v) { return v.cwiseAbs().maxCoeff(); }
+
+}  // namespace
+
+std::optional<int> exact_plane_axis(const Query& query) {
+  if (const auto axis = shared_coordinate(query)) return axis;
+  const std::optional<Query> scaled = normalized(query);
+  if (!scaled) return std::nullopt;
+  // Three reference points spanning the plane: the first, the farthest from
+  // it, and the one making the largest normal with those two.
+  const auto& points = scaled->points;
+  const Vec3& origin = points[0];
+  int far = 0;
+  for (int i = 1; i < 8; ++i)
+    if (largest_component(points[i] - origin) > largest_component(points[far] - origin)) far = i;
+  if (far == 0) return std::nullopt;  // one point: the coincident case
+  int third = 0;
+  Vec3 normal = Vec3::Zero();
+  for (int i = 1; i < 8; ++i) {
+    const Vec3 candidate = (points[far] - origin).cross(points[i] - origin);
+    if (largest_component(candidate) > largest_component(normal)) {
+      normal = candidate;
+      third = i;
+    }
+  }
+  if (third == 0) return std::nullopt;  // collinear throughout (as far as double tells)
+  int axis = 0;
+  normal.cwiseAbs().maxCoeff(&axis);
+  // The projection maps the plane one to one when the references stay a
+  // proper triangle in it.
+  const auto others = [&](auto&& test) {
+    for (int i = 1; i < 8; ++i)
+      if (i != far && i != third && !test(origin, points[far], points[third], points[i])) return false;
+    return true;
+  };
+  if (!others(may_be_in_plane)) return std::nullopt;  // a generic query leaves here
+  if (orientation_2d(origin, points[far], points[third], axis) == 0) return std::nullopt;
+  const ExactPlane plane(origin, points[far], points[third]);
+  const auto in_plane = [&](const Vec3&, const Vec3&, const Vec3&, const Vec3& d) { return plane.contains(d); };
+  if (!others(in_plane)) return std::nullopt;
+  return axis;
+}
+
+}  // namespace batchccd::exact

@@ -1,0 +1,307 @@
+// Planar motion (docs/design.md §5a): queries whose eight points stay in one
+// plane, decided in that plane. Every answer is checked against the exact
+// stage run on its own (GMP integers, an independent decision procedure),
+// in both modes, through the batch call (lanes, then the scalar path) and
+// the scalar path alone.
+
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "batchccd/batchccd.hpp"
+#include "batchccd/lab.hpp"
+#include "exact/exact_solver.hpp"
+#include "exact/plane_axis.hpp"
+#include "reference/scaled_query.hpp"
+
+namespace batchccd {
+namespace {
+
+const double kExactToiWidth = std::ldexp(1.0, -static_cast<int>(exact::kToiBits));
+
+// An exactly representable plane: points (s, t) of the plane map to
+// origin + s * u + t * v with small integer u, v and dyadic s, t, so every
+// coordinate is exact.
+struct Plane {
+  Vec3 origin, u, v;
+  Vec3 operator()(double s, double t) const { return origin + s * u + t * v; }
+};
+
+const Plane kFloor{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+const Plane kRaisedFloor{{0, 0, 0.75}, {1, 0, 0}, {0, 1, 0}};
+const Plane kWall{{0.5, 0, 0}, {0, 0, 1}, {0, 1, 0}};
+const Plane kTilted{{0.25, -0.5, 1}, {1, 0, 1}, {0, 1, 2}};  // z = x + 2y + 1.75
+const Plane kDiagonal{{0, 0, 0}, {1, 1, 0}, {0, 0, 1}};       // x = y
+
+struct PlanarFamily {
+  Kind kind;
+  Plane plane;
+};
+
+// Random dyadic in-plane coordinates (16 fractional bits) in [-1, 1].
+class PlanarGenerator {
+ public:
+  explicit PlanarGenerator(unsigned seed) : random_(seed) {}
+
+  double coordinate() { return std::ldexp(static_cast<double>(integer_(random_)), -16); }
+
+  // The query's points at t0 and t1 in plane coordinates (p, a, b, c or
+  // ea0, ea1, eb0, eb1), about a third of them in contact: the moving point
+  // or an edge is pushed toward the other primitive.
+  Query query(Kind kind, const Plane& plane) {
+    std::array<std::array<double, 2>, 8> in_plane;
+    for (auto& point : in_plane) point = {coordinate(), coordinate()};
+    if (kind == Kind::vertex_edge) {  // p, p, e0, e1
+      in_plane[1] = in_plane[0];
+      in_plane[5] = in_plane[4];
+    }
+    if (kind == Kind::vertex_vertex) {
+      in_plane[1] = in_plane[0];
+      in_plane[5] = in_plane[4];
+      in_plane[3] = in_plane[2];
+      in_plane[7] = in_plane[6];
+    }
+    Query query;
+    for (int i = 0; i < 8; ++i) query.points[i] = plane(in_plane[i][0], in_plane[i][1]);
+    return query;
+  }
+
+ private:
+  std::mt19937_64 random_;
+  std::uniform_int_distribution<int> integer_{-(1 << 16), 1 << 16};
+};
+
+Query scaled_by(Query query, double factor) {
+  for (Vec3& point : query.points) point *= factor;
+  return query;
+}
+
+// The exact stage alone: hit, and its TOI (within 2^-40 below the first contact).
+exact::ExactOutcome truth(Kind kind, const Query& query, double tmax = 1) {
+  return exact::solve_exactly(reference::evaluated_kind(kind), query, true, tmax);
+}
+
+Options options_for(Mode mode, double tmax = 1) {
+  Options options;
+  options.mode = mode;
+  options.tmax = tmax;
+  options.per_candidate_results = true;
+  return options;
+}
+
+// The answer agrees with exact arithmetic: the same decision; a TOI never
+// after the first contact and within the mode's width before it.
+void expect_agrees(const QueryResult& result, const exact::ExactOutcome& exact, Mode mode, const Query& query) {
+  ASSERT_EQ(result.status, Status::ok);
+  ASSERT_EQ(result.hit, exact.hit) << "query " << ::testing::PrintToString(query.points);
+  if (!exact.hit) return;
+  const double width = mode == Mode::exact ? kExactToiWidth : Options{}.toi_tolerance;
+  EXPECT_LE(result.toi, exact.toi + 2 * kExactToiWidth);
+  EXPECT_GE(result.toi, exact.toi - width - kExactToiWidth);
+}
+
+TEST(PlanarAxis, FindsAxisAndTiltedPlanes) {
+  PlanarGenerator generator(1);
+  for (const Plane& plane : {kFloor, kRaisedFloor, kWall, kTilted, kDiagonal})
+    for (Kind kind : {Kind::vertex_face, Kind::edge_edge}) {
+      const std::optional<int> axis = exact::exact_plane_axis(generator.query(kind, plane));
+      ASSERT_TRUE(axis.has_value());
+      // The plane's normal has a nonzero component along the axis.
+      EXPECT_NE(plane.u.cross(plane.v)[*axis], 0);
+    }
+}
+
+TEST(PlanarAxis, RefusesAPointOneUlpOffThePlane) {
+  PlanarGenerator generator(2);
+  for (const Plane& plane : {kFloor, kTilted, kDiagonal}) {
+    Query query = generator.query(Kind::vertex_face, plane);
+    ASSERT_TRUE(exact::exact_plane_axis(query).has_value());
+    const Vec3 normal = plane.u.cross(plane.v);
+    int axis = 0;
+    normal.cwiseAbs().maxCoeff(&axis);
+    query.points[6][axis] = std::nextafter(query.points[6][axis], 10.0);
+    EXPECT_FALSE(exact::exact_plane_axis(query).has_value());
+  }
+}
+
+TEST(PlanarAxis, RefusesGenericAndCollinearQueries) {
+  Query generic;
+  for (int i = 0; i < 8; ++i) generic.points[i] = Vec3(i % 3, i * i % 5, (i * 7) % 4);
+  EXPECT_FALSE(exact::exact_plane_axis(generic).has_value());
+  Query collinear;  // all on the line x = y = z: in every plane through it
+  for (int i = 0; i < 8; ++i) collinear.points[i] = Vec3(i, i, i) * 0.125;
+  EXPECT_FALSE(exact::exact_plane_axis(collinear).has_value());
+}
+
+class PlanarRandom : public ::testing::TestWithParam<PlanarFamily> {};
+
+// Random in-plane motions in every plane and kind: every decision equal to
+// exact arithmetic in both modes, and nearly none left to the exact stage
+// (the planar path is what decides them).
+TEST_P(PlanarRandom, AgreesWithExactArithmetic) {
+  const PlanarFamily family = GetParam();
+  PlanarGenerator generator(7 + static_cast<unsigned>(family.kind));
+  std::vector<Query> queries;
+  for (int i = 0; i < 600; ++i) queries.push_back(generator.query(family.kind, family.plane));
+  std::vector<exact::ExactOutcome> expected;
+  int contacts = 0;
+  for (const Query& query : queries) {
+    expected.push_back(truth(family.kind, query));
+    contacts += expected.back().hit;
+  }
+  if (family.kind != Kind::vertex_vertex) {
+    EXPECT_GT(contacts, 30) << "the family should hold contacts";
+  }
+  for (Mode mode : {Mode::conservative, Mode::exact}) {
+    const BatchResult batch = batch_ccd(family.kind, queries, options_for(mode));
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+      expect_agrees(batch.results[i], expected[i], mode, queries[i]);
+      expect_agrees(query_ccd(family.kind, queries[i], options_for(mode)), expected[i], mode, queries[i]);
+    }
+    // Point-point contacts need both coordinates to agree at once, which no
+    // sign test certifies: those few go to the exact stage by design.
+    const std::int64_t allowed = family.kind == Kind::vertex_vertex ? contacts : queries.size() / 100;
+    EXPECT_LE(batch.counters.exact_escalations, allowed) << to_string(mode);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Planes, PlanarRandom,
+    ::testing::Values(PlanarFamily{Kind::vertex_face, kFloor}, PlanarFamily{Kind::edge_edge, kFloor},
+                      PlanarFamily{Kind::vertex_face, kRaisedFloor}, PlanarFamily{Kind::edge_edge, kRaisedFloor},
+                      PlanarFamily{Kind::vertex_face, kWall}, PlanarFamily{Kind::edge_edge, kWall},
+                      PlanarFamily{Kind::vertex_face, kTilted}, PlanarFamily{Kind::edge_edge, kTilted},
+                      PlanarFamily{Kind::vertex_face, kDiagonal}, PlanarFamily{Kind::edge_edge, kDiagonal},
+                      PlanarFamily{Kind::vertex_edge, kFloor}, PlanarFamily{Kind::vertex_edge, kTilted},
+                      PlanarFamily{Kind::vertex_vertex, kFloor}));
+
+// One query in both modes and at tmax, against exact arithmetic.
+void expect_exact_answers(Kind kind, const Query& query, double tmax = 1) {
+  const exact::ExactOutcome expected = truth(kind, query, tmax);
+  for (Mode mode : {Mode::conservative, Mode::exact}) {
+    expect_agrees(query_ccd(kind, query, options_for(mode, tmax)), expected, mode, query);
+    expect_agrees(batch_ccd(kind, std::vector<Query>{query}, options_for(mode, tmax)).results[0], expected,
+                  mode, query);
+  }
+}
+
+Query vertex_face(const Plane& plane, std::array<std::array<double, 2>, 4> start,
+                  std::array<std::array<double, 2>, 4> end) {
+  Query query;
+  for (int i = 0; i < 4; ++i) {
+    query.points[i] = plane(start[i][0], start[i][1]);
+    query.points[i + 4] = plane(end[i][0], end[i][1]);
+  }
+  return query;
+}
+
+// The hand-made cases: first contacts at the ends of the step, corners
+// grazed, edges on one line, pairs that do not move, extreme scales.
+TEST(PlanarCases, VertexFaceEvents) {
+  const std::array<std::array<double, 2>, 3> triangle{{{0, 0}, {1, 0}, {0, 1}}};
+  const auto moving_vertex = [&](const Plane& plane, std::array<double, 2> from, std::array<double, 2> to) {
+    return vertex_face(plane, {from, triangle[0], triangle[1], triangle[2]},
+                       {to, triangle[0], triangle[1], triangle[2]});
+  };
+  for (const Plane& plane : {kFloor, kTilted, kDiagonal}) {
+    SCOPED_TRACE(::testing::PrintToString(plane.u));
+    const std::vector<Query> cases{
+        moving_vertex(plane, {0.25, 0.25}, {3, 3}),     // inside at t = 0
+        moving_vertex(plane, {-1, 0.25}, {0, 0.25}),    // reaches the edge at t = 1
+        moving_vertex(plane, {-1, 0.25}, {-0.5, 0.25}), // stops short
+        moving_vertex(plane, {-1, -1}, {1, 1}),         // through the corner (0, 0)
+        moving_vertex(plane, {-1, 1}, {1, -1}),         // grazes the corner (0, 0) from outside
+        moving_vertex(plane, {-1, 0}, {2, 0}),          // along the edge's line
+        moving_vertex(plane, {2, 2}, {-1, 2}),          // passes above
+        moving_vertex(plane, {0.5, 0.5}, {0.5, 0.5}),   // static, on the hypotenuse
+        moving_vertex(plane, {0.5, 0.75}, {0.5, 0.75}), // static, outside
+        vertex_face(plane, {{{0.25, 0.25}, {1, 1}, {2, 1}, {1, 2}}},  // the triangle slides onto the vertex
+                    {{{0.25, 0.25}, {0, 0}, {1, 0}, {0, 1}}}),
+        vertex_face(plane, {{{0.2, 0.2}, {0, 0}, {1, 0}, {0, 1}}},    // the triangle flips through a segment
+                    {{{0.2, 0.2}, {0, 0}, {1, 0}, {1, -1}}}),
+    };
+    for (const Query& query : cases) {
+      expect_exact_answers(Kind::vertex_face, query);
+      expect_exact_answers(Kind::vertex_face, query, 0.5);
+      expect_exact_answers(Kind::vertex_face, scaled_by(query, 0x1p-400));
+      expect_exact_answers(Kind::vertex_face, scaled_by(query, 0x1p400));
+    }
+  }
+}
+
+TEST(PlanarCases, EdgeEdgeEvents) {
+  const auto edges = [](const Plane& plane, std::array<std::array<double, 2>, 4> start,
+                        std::array<std::array<double, 2>, 4> end) { return vertex_face(plane, start, end); };
+  for (const Plane& plane : {kFloor, kTilted}) {
+    const std::vector<Query> cases{
+        edges(plane, {{{0, 0}, {1, 0}, {0.5, -1}, {0.5, 1}}}, {{{0, 0}, {1, 0}, {0.5, -1}, {0.5, 1}}}),  // crossing, static
+        edges(plane, {{{0, 0}, {1, 0}, {2, -1}, {2, 1}}}, {{{0, 0}, {1, 0}, {0.5, -1}, {0.5, 1}}}),      // slides in
+        edges(plane, {{{0, 0}, {1, 0}, {2, -1}, {2, 1}}}, {{{0, 0}, {1, 0}, {1, -1}, {1, 1}}}),          // touches the end at t = 1
+        edges(plane, {{{0, 0}, {1, 0}, {3, 0}, {4, 0}}}, {{{0, 0}, {1, 0}, {0.5, 0}, {1.5, 0}}}),        // collinear, into overlap
+        edges(plane, {{{0, 0}, {1, 0}, {3, 0}, {4, 0}}}, {{{0, 0}, {1, 0}, {2, 0}, {3, 0}}}),            // collinear, short
+        edges(plane, {{{0, 0}, {1, 0}, {0, 1}, {1, 1}}}, {{{0, 0}, {1, 0}, {0, 1}, {1, 1}}}),            // parallel, static
+        edges(plane, {{{0, 0}, {1, 0}, {1, 1}, {2, 0}}}, {{{0, 0}, {1, 0}, {0, -1}, {1, 0}}}),          // corner to corner
+    };
+    for (const Query& query : cases) {
+      expect_exact_answers(Kind::edge_edge, query);
+      expect_exact_answers(Kind::edge_edge, query, 0.75);
+      expect_exact_answers(Kind::edge_edge, scaled_by(query, 0x1p-400));
+    }
+  }
+}
+
+TEST(PlanarCases, PointKinds) {
+  for (const Plane& plane : {kFloor, kTilted}) {
+    const auto point_edge = [&](std::array<double, 2> p0, std::array<double, 2> p1) {
+      return make_query(Kind::vertex_edge, std::vector<Vec3>{plane(p0[0], p0[1]), plane(0, 0), plane(1, 0)},
+                        std::vector<Vec3>{plane(p1[0], p1[1]), plane(0, 0), plane(1, 0)});
+    };
+    expect_exact_answers(Kind::vertex_edge, point_edge({0.5, 1}, {0.5, -1}));  // crosses
+    expect_exact_answers(Kind::vertex_edge, point_edge({2, 1}, {2, -1}));      // passes beyond the end
+    expect_exact_answers(Kind::vertex_edge, point_edge({1, 1}, {1, -1}));      // through the end point
+    expect_exact_answers(Kind::vertex_edge, point_edge({0.5, 1}, {0.5, 0}));   // reaches it at t = 1
+    const auto point_point = [&](std::array<double, 2> q0, std::array<double, 2> q1) {
+      return make_query(Kind::vertex_vertex, std::vector<Vec3>{plane(0, 0), plane(q0[0], q0[1])},
+                        std::vector<Vec3>{plane(1, 1), plane(q1[0], q1[1])});
+    };
+    expect_exact_answers(Kind::vertex_vertex, point_point({1, 0}, {0, 1}));  // meet at t = 1/2
+    expect_exact_answers(Kind::vertex_vertex, point_point({1, 0}, {0, 2}));  // miss
+  }
+}
+
+// The shared data's coplanar-motion queries (planar/), in every mode, and the
+// lanes against the scalar path: identical answers.
+TEST(PlanarSharedData, ZeroWrongDecisionsAndLanesMatchScalar) {
+  const std::filesystem::path root = std::filesystem::path(BATCHCCD_SHARED_DATA) / "planar";
+  if (!std::filesystem::is_directory(root)) GTEST_SKIP() << root << " is absent";
+  int files = 0;
+  for (const char* plane : {"z0", "z075"})
+    for (const auto& [kind, path] : {std::pair{Kind::vertex_face, "vertex-face/vf.csv"},
+                                     std::pair{Kind::edge_edge, "edge-edge/ee.csv"}}) {
+      const QueryFile file = read_query_csv(root / plane / path, kind);
+      ASSERT_TRUE(file.truth.has_value());
+      ++files;
+      for (Mode mode : {Mode::conservative, Mode::exact}) {
+        Options options = options_for(mode);
+        const BatchResult lanes = batch_ccd(kind, file.queries, options);
+        options.isa = Isa::scalar;
+        const BatchResult scalar = batch_ccd(kind, file.queries, options);
+        int wrong = 0;
+        for (std::size_t i = 0; i < file.queries.size(); ++i) {
+          wrong += lanes.results[i].hit != (*file.truth)[i];
+          EXPECT_EQ(lanes.results[i].hit, scalar.results[i].hit);
+          EXPECT_EQ(lanes.results[i].toi, scalar.results[i].toi);
+        }
+        EXPECT_EQ(wrong, 0) << plane << " " << path << " " << to_string(mode);
+        EXPECT_LE(lanes.counters.exact_escalations, static_cast<std::int64_t>(file.queries.size() / 100));
+      }
+    }
+  EXPECT_EQ(files, 4);
+}
+
+}  // namespace
+}  // namespace batchccd
