@@ -1,12 +1,25 @@
 #pragma once
 
-// Per-query calls with ipc-toolkit's names, argument order, defaults and
-// meaning (ipc::point_point_ccd, point_edge_ccd, edge_edge_ccd,
-// point_triangle_ccd in ipc/ccd/ccd.hpp), so that a port compiles and means
-// the same: replace `ipc::` by `batchccd::ipc::`.
+// Per-query calls with the names, argument order and defaults of
+// ipc-toolkit's free functions (ipc::point_point_ccd, point_edge_ccd,
+// edge_edge_ccd, point_triangle_ccd in ipc/ccd/ccd.hpp, version 1.2) and
+// their meaning, which TightInclusionCCD's members keep from 1.3 on (with
+// tolerance, max_iterations and conservative_rescaling as its fields), so
+// that a port compiles and means the same: replace `ipc::` by
+// `batchccd::ipc::`.
 //
 //   bool hit = batchccd::ipc::point_triangle_ccd(p_t0, t0_t0, t1_t0, t2_t0, p_t1, t0_t1, t1_t1,
 //                                                t2_t1, toi, min_distance, tmax);
+//
+// Points: Eigen vectors of doubles (Vector3d, a Map, Ref, block, VectorXd,
+// an expression). point_point_ccd and point_edge_ccd take 2D or 3D points,
+// all of one length, as ipc-toolkit's VectorMax3d: a 2D point is the 3D
+// point with z = 0. edge_edge_ccd and point_triangle_ccd take 3D points
+// only. A length fixed at compile time that does not fit (a Vector2d for a
+// triangle, a Vector2d with a Vector3d, a Vector4d) does not compile; a
+// length known only at run time that does not fit throws
+// std::invalid_argument naming the call and the argument. No call reads
+// past a vector's end.
 //
 // Each call does what ipc-toolkit's does around Tight Inclusion, with
 // batchccd's conservative mode (Mode::conservative: never a false negative)
@@ -36,6 +49,10 @@
 // finite, tmax is not in [0, 1], tolerance is not positive and finite or
 // conservative_rescaling is not in (0, 1]. A NaN or infinite coordinate
 // returns true with toi = 0.
+#include <concepts>
+#include <initializer_list>
+#include <span>
+
 #include "batchccd/query.hpp"
 
 namespace batchccd::ipc {
@@ -45,30 +62,118 @@ inline constexpr double DEFAULT_CCD_TOLERANCE = 1e-6;
 inline constexpr long DEFAULT_CCD_MAX_ITERATIONS = 10'000'000L;
 inline constexpr double DEFAULT_CCD_CONSERVATIVE_RESCALING = 0.8;
 
-bool point_point_ccd(const Vec3& p0_t0, const Vec3& p1_t0, const Vec3& p0_t1, const Vec3& p1_t1,
-                     double& toi, double min_distance = 0.0, double tmax = 1.0,
-                     double tolerance = DEFAULT_CCD_TOLERANCE,
+namespace detail {
+
+// An Eigen vector of doubles: a Matrix, Map, Ref, block or expression.
+template <class T>
+concept DoubleVector = std::derived_from<T, Eigen::MatrixBase<T>> && std::same_as<typename T::Scalar, double> &&
+                       bool(T::IsVectorAtCompileTime);
+
+// Lengths fixed at compile time lie in [shortest, 3] and agree; a length
+// known only at run time (Eigen::Dynamic) is checked then.
+constexpr bool fixed_lengths_fit(int shortest, std::initializer_list<int> lengths) {
+  int fixed = Eigen::Dynamic;
+  for (const int length : lengths) {
+    if (length == Eigen::Dynamic) continue;
+    if (length < shortest || length > 3 || (fixed != Eigen::Dynamic && length != fixed)) return false;
+    fixed = length;
+  }
+  return true;
+}
+
+}  // namespace detail
+
+// The points of point_point_ccd and point_edge_ccd: all 2D or all 3D.
+template <class... Points>
+concept PlanarOrSpatialPoints =
+    (detail::DoubleVector<Points> && ...) && detail::fixed_lengths_fit(2, {int(Points::SizeAtCompileTime)...});
+
+// The points of edge_edge_ccd and point_triangle_ccd: 3D.
+template <class... Points>
+concept SpatialPoints =
+    (detail::DoubleVector<Points> && ...) && detail::fixed_lengths_fit(3, {int(Points::SizeAtCompileTime)...});
+
+namespace detail {
+
+// One point argument: its name for messages, its length, and its
+// coordinates in 3D (z = 0 for a 2D point). A vector of another length is
+// not read; the call refuses it.
+struct PointArgument {
+  const char* name;
+  Eigen::Index length;
+  Vec3 point;
+};
+
+template <class P>
+PointArgument read_point(const char* name, const Eigen::MatrixBase<P>& point) {
+  PointArgument argument{name, point.size(), Vec3::Zero()};
+  if (argument.length == 2 || argument.length == 3) argument.point.head(argument.length) = point;
+  return argument;
+}
+
+// The calls below, once their points are read: `points` holds the t0
+// points, then the t1 points, in the call's order (make_query's). Checks
+// the lengths (std::invalid_argument naming `call` and the argument), then
+// the other arguments, then decides.
+bool ccd(const char* call, Kind kind, std::span<const PointArgument> points, double& toi, double min_distance,
+         double tmax, double tolerance, long max_iterations, double conservative_rescaling);
+
+}  // namespace detail
+
+template <class P0, class P1, class P2, class P3>
+  requires PlanarOrSpatialPoints<P0, P1, P2, P3>
+bool point_point_ccd(const P0& p0_t0, const P1& p1_t0, const P2& p0_t1, const P3& p1_t1, double& toi,
+                     double min_distance = 0.0, double tmax = 1.0, double tolerance = DEFAULT_CCD_TOLERANCE,
                      long max_iterations = DEFAULT_CCD_MAX_ITERATIONS,
-                     double conservative_rescaling = DEFAULT_CCD_CONSERVATIVE_RESCALING);
+                     double conservative_rescaling = DEFAULT_CCD_CONSERVATIVE_RESCALING) {
+  const detail::PointArgument points[] = {detail::read_point("p0_t0", p0_t0), detail::read_point("p1_t0", p1_t0),
+                                          detail::read_point("p0_t1", p0_t1), detail::read_point("p1_t1", p1_t1)};
+  return detail::ccd("batchccd::ipc::point_point_ccd", Kind::vertex_vertex, points, toi, min_distance, tmax,
+                     tolerance, max_iterations, conservative_rescaling);
+}
 
-bool point_edge_ccd(const Vec3& p_t0, const Vec3& e0_t0, const Vec3& e1_t0, const Vec3& p_t1,
-                    const Vec3& e0_t1, const Vec3& e1_t1, double& toi, double min_distance = 0.0,
-                    double tmax = 1.0, double tolerance = DEFAULT_CCD_TOLERANCE,
-                    long max_iterations = DEFAULT_CCD_MAX_ITERATIONS,
-                    double conservative_rescaling = DEFAULT_CCD_CONSERVATIVE_RESCALING);
+template <class P0, class P1, class P2, class P3, class P4, class P5>
+  requires PlanarOrSpatialPoints<P0, P1, P2, P3, P4, P5>
+bool point_edge_ccd(const P0& p_t0, const P1& e0_t0, const P2& e1_t0, const P3& p_t1, const P4& e0_t1,
+                    const P5& e1_t1, double& toi, double min_distance = 0.0, double tmax = 1.0,
+                    double tolerance = DEFAULT_CCD_TOLERANCE, long max_iterations = DEFAULT_CCD_MAX_ITERATIONS,
+                    double conservative_rescaling = DEFAULT_CCD_CONSERVATIVE_RESCALING) {
+  const detail::PointArgument points[] = {detail::read_point("p_t0", p_t0),   detail::read_point("e0_t0", e0_t0),
+                                          detail::read_point("e1_t0", e1_t0), detail::read_point("p_t1", p_t1),
+                                          detail::read_point("e0_t1", e0_t1), detail::read_point("e1_t1", e1_t1)};
+  return detail::ccd("batchccd::ipc::point_edge_ccd", Kind::vertex_edge, points, toi, min_distance, tmax, tolerance,
+                     max_iterations, conservative_rescaling);
+}
 
-bool edge_edge_ccd(const Vec3& ea0_t0, const Vec3& ea1_t0, const Vec3& eb0_t0, const Vec3& eb1_t0,
-                   const Vec3& ea0_t1, const Vec3& ea1_t1, const Vec3& eb0_t1, const Vec3& eb1_t1,
-                   double& toi, double min_distance = 0.0, double tmax = 1.0,
-                   double tolerance = DEFAULT_CCD_TOLERANCE,
+template <class P0, class P1, class P2, class P3, class P4, class P5, class P6, class P7>
+  requires SpatialPoints<P0, P1, P2, P3, P4, P5, P6, P7>
+bool edge_edge_ccd(const P0& ea0_t0, const P1& ea1_t0, const P2& eb0_t0, const P3& eb1_t0, const P4& ea0_t1,
+                   const P5& ea1_t1, const P6& eb0_t1, const P7& eb1_t1, double& toi, double min_distance = 0.0,
+                   double tmax = 1.0, double tolerance = DEFAULT_CCD_TOLERANCE,
                    long max_iterations = DEFAULT_CCD_MAX_ITERATIONS,
-                   double conservative_rescaling = DEFAULT_CCD_CONSERVATIVE_RESCALING);
+                   double conservative_rescaling = DEFAULT_CCD_CONSERVATIVE_RESCALING) {
+  const detail::PointArgument points[] = {
+      detail::read_point("ea0_t0", ea0_t0), detail::read_point("ea1_t0", ea1_t0),
+      detail::read_point("eb0_t0", eb0_t0), detail::read_point("eb1_t0", eb1_t0),
+      detail::read_point("ea0_t1", ea0_t1), detail::read_point("ea1_t1", ea1_t1),
+      detail::read_point("eb0_t1", eb0_t1), detail::read_point("eb1_t1", eb1_t1)};
+  return detail::ccd("batchccd::ipc::edge_edge_ccd", Kind::edge_edge, points, toi, min_distance, tmax, tolerance,
+                     max_iterations, conservative_rescaling);
+}
 
-bool point_triangle_ccd(const Vec3& p_t0, const Vec3& t0_t0, const Vec3& t1_t0, const Vec3& t2_t0,
-                        const Vec3& p_t1, const Vec3& t0_t1, const Vec3& t1_t1, const Vec3& t2_t1,
-                        double& toi, double min_distance = 0.0, double tmax = 1.0,
-                        double tolerance = DEFAULT_CCD_TOLERANCE,
+template <class P0, class P1, class P2, class P3, class P4, class P5, class P6, class P7>
+  requires SpatialPoints<P0, P1, P2, P3, P4, P5, P6, P7>
+bool point_triangle_ccd(const P0& p_t0, const P1& t0_t0, const P2& t1_t0, const P3& t2_t0, const P4& p_t1,
+                        const P5& t0_t1, const P6& t1_t1, const P7& t2_t1, double& toi, double min_distance = 0.0,
+                        double tmax = 1.0, double tolerance = DEFAULT_CCD_TOLERANCE,
                         long max_iterations = DEFAULT_CCD_MAX_ITERATIONS,
-                        double conservative_rescaling = DEFAULT_CCD_CONSERVATIVE_RESCALING);
+                        double conservative_rescaling = DEFAULT_CCD_CONSERVATIVE_RESCALING) {
+  const detail::PointArgument points[] = {
+      detail::read_point("p_t0", p_t0),   detail::read_point("t0_t0", t0_t0), detail::read_point("t1_t0", t1_t0),
+      detail::read_point("t2_t0", t2_t0), detail::read_point("p_t1", p_t1),   detail::read_point("t0_t1", t0_t1),
+      detail::read_point("t1_t1", t1_t1), detail::read_point("t2_t1", t2_t1)};
+  return detail::ccd("batchccd::ipc::point_triangle_ccd", Kind::vertex_face, points, toi, min_distance, tmax,
+                     tolerance, max_iterations, conservative_rescaling);
+}
 
 }  // namespace batchccd::ipc

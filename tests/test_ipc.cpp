@@ -1,0 +1,268 @@
+// The calls shaped like ipc-toolkit's (ipc.hpp): 2D points read as z = 0 and
+// never past their end, and 3D-only calls that refuse 2D points.
+#include <array>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "batchccd/batchccd.hpp"
+
+namespace {
+
+using batchccd::Vec3;
+using Eigen::Vector2d;
+using Eigen::VectorXd;
+namespace ipc = batchccd::ipc;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Which points each call takes, asked at compile time.
+template <class P, class Q = P>
+concept PointPointTakes = requires(const P& p, const Q& q, double& toi) { ipc::point_point_ccd(p, q, p, q, toi); };
+template <class P, class Q = P>
+concept PointEdgeTakes =
+    requires(const P& p, const Q& q, double& toi) { ipc::point_edge_ccd(p, q, q, p, q, q, toi); };
+template <class P, class Q = P>
+concept EdgeEdgeTakes =
+    requires(const P& p, const Q& q, double& toi) { ipc::edge_edge_ccd(p, q, q, q, p, q, q, q, toi); };
+template <class P, class Q = P>
+concept PointTriangleTakes =
+    requires(const P& p, const Q& q, double& toi) { ipc::point_triangle_ccd(p, q, q, q, p, q, q, q, toi); };
+
+using MapXd = Eigen::Map<const VectorXd>;
+using RefXd = Eigen::Ref<const VectorXd>;
+
+// 2D or 3D, fixed or dynamic, for the point calls.
+static_assert(PointPointTakes<Vector2d> && PointPointTakes<Vec3> && PointPointTakes<VectorXd> &&
+              PointPointTakes<MapXd> && PointPointTakes<RefXd> && PointPointTakes<Eigen::RowVector2d>);
+static_assert(PointEdgeTakes<Vector2d> && PointEdgeTakes<Vec3> && PointEdgeTakes<VectorXd> &&
+              PointEdgeTakes<MapXd> && PointEdgeTakes<RefXd> && PointEdgeTakes<Vector2d, VectorXd>);
+// Fixed lengths that do not fit: refused at compile time.
+static_assert(!PointPointTakes<Vector2d, Vec3> && !PointPointTakes<Eigen::Vector4d> &&
+              !PointPointTakes<Eigen::Matrix<double, 1, 1>> && !PointPointTakes<Eigen::Vector2f>);
+static_assert(!PointEdgeTakes<Vector2d, Vec3> && !PointEdgeTakes<Vec3, Vector2d> && !PointEdgeTakes<Eigen::Vector4d>);
+// 3D only.
+static_assert(PointTriangleTakes<Vec3> && PointTriangleTakes<VectorXd> && EdgeEdgeTakes<Vec3> &&
+              EdgeEdgeTakes<MapXd>);
+static_assert(!PointTriangleTakes<Vector2d> && !PointTriangleTakes<Vec3, Vector2d> &&
+              !PointTriangleTakes<Eigen::Vector4d>);
+static_assert(!EdgeEdgeTakes<Vector2d> && !EdgeEdgeTakes<Vec3, Vector2d> && !EdgeEdgeTakes<Eigen::Vector4d>);
+
+Vec3 spatial(const Vector2d& point) { return {point.x(), point.y(), 0}; }
+
+Vector2d lerp(const Vector2d& a, const Vector2d& b, double t) { return a + t * (b - a); }
+
+// A 2D point kept in a buffer with a NaN right after it: a call that reads
+// past the 2-vector's end sees the NaN and reports toi = 0.
+struct FencedPoint {
+  explicit FencedPoint(const Vector2d& point) : storage{point.x(), point.y(), kNaN} {}
+  MapXd view() const { return MapXd(storage.data(), 2); }
+  std::array<double, 3> storage;
+};
+
+// Point p against edge (e0, e1) in the plane, six points t0 then t1.
+struct PlanarPointEdge {
+  std::array<Vector2d, 6> x;  // p_t0, e0_t0, e1_t0, p_t1, e0_t1, e1_t1
+  double contact_time = 0;    // when they certainly meet (the first contact is no later)
+};
+
+// The point reaches the edge's interior at contact_time.
+PlanarPointEdge planar_point_edge_impact(std::mt19937_64& random) {
+  std::uniform_real_distribution<double> coordinate(-1, 1), time(0.05, 0.95), along(0.1, 0.9);
+  PlanarPointEdge c;
+  for (Vector2d& point : c.x) point = {coordinate(random), coordinate(random)};
+  c.contact_time = time(random);
+  const Vector2d met = lerp(lerp(c.x[1], c.x[4], c.contact_time), lerp(c.x[2], c.x[5], c.contact_time),
+                            along(random));
+  c.x[3] = c.x[0] + (met - c.x[0]) / c.contact_time;
+  return c;
+}
+
+// The edge stays in x <= 0 and the point in x >= 0.5: at least 0.5 apart.
+PlanarPointEdge planar_point_edge_miss(std::mt19937_64& random) {
+  std::uniform_real_distribution<double> coordinate(-1, 1), left(-1, 0), right(0.5, 1.5);
+  PlanarPointEdge c;
+  for (Vector2d& point : c.x) point = {left(random), coordinate(random)};
+  c.x[0].x() = right(random);
+  c.x[3].x() = right(random);
+  c.contact_time = std::numeric_limits<double>::infinity();
+  return c;
+}
+
+struct Answer {
+  bool hit;
+  double toi;
+};
+
+template <class Point>
+Answer point_edge(const std::array<Point, 6>& x, double min_distance) {
+  double toi = -1;
+  const bool hit = ipc::point_edge_ccd(x[0], x[1], x[2], x[3], x[4], x[5], toi, min_distance);
+  return {hit, toi};
+}
+
+// The same question with 2-vectors (fixed, and dynamic in fenced buffers)
+// and with 3-vectors at z = 0: the same answer.
+Answer planar_point_edge(const PlanarPointEdge& c, double min_distance) {
+  std::array<Vec3, 6> in_space;
+  std::array<FencedPoint, 6> fenced = {FencedPoint(c.x[0]), FencedPoint(c.x[1]), FencedPoint(c.x[2]),
+                                       FencedPoint(c.x[3]), FencedPoint(c.x[4]), FencedPoint(c.x[5])};
+  std::array<MapXd, 6> dynamic = {fenced[0].view(), fenced[1].view(), fenced[2].view(),
+                                  fenced[3].view(), fenced[4].view(), fenced[5].view()};
+  for (int k = 0; k < 6; ++k) in_space[k] = spatial(c.x[k]);
+  const Answer planar = point_edge(c.x, min_distance);
+  const Answer through_maps = point_edge(dynamic, min_distance);
+  const Answer spatial_answer = point_edge(in_space, min_distance);
+  EXPECT_EQ(planar.hit, spatial_answer.hit);
+  EXPECT_EQ(planar.toi, spatial_answer.toi);
+  EXPECT_EQ(through_maps.hit, spatial_answer.hit);
+  EXPECT_EQ(through_maps.toi, spatial_answer.toi);
+  return planar;
+}
+
+TEST(IpcPlanar, PointEdgeImpactsAndMisses) {
+  std::mt19937_64 random(28);
+  int hits = 0;
+  for (int i = 0; i < 400; ++i) {
+    const PlanarPointEdge c = planar_point_edge_impact(random);
+    for (const double min_distance : {0.0, 0.01}) {
+      const Answer answer = planar_point_edge(c, min_distance);
+      EXPECT_TRUE(answer.hit) << "impact " << i << " at " << c.contact_time;
+      EXPECT_GE(answer.toi, 0.0);
+      EXPECT_LE(answer.toi, c.contact_time) << "impact " << i;
+      hits += answer.hit;
+    }
+  }
+  EXPECT_EQ(hits, 800);
+  for (int i = 0; i < 400; ++i) {
+    const PlanarPointEdge c = planar_point_edge_miss(random);
+    for (const double min_distance : {0.0, 0.25}) {
+      const Answer answer = planar_point_edge(c, min_distance);
+      EXPECT_FALSE(answer.hit) << "miss " << i;
+      EXPECT_EQ(answer.toi, -1);  // untouched
+    }
+  }
+}
+
+TEST(IpcPlanar, PointPointImpactsAndMisses) {
+  std::mt19937_64 random(280);
+  std::uniform_real_distribution<double> coordinate(-1, 1), time(0.05, 0.95), right(0.5, 1.5);
+  const double min_distance = 0.01;
+  for (int i = 0; i < 400; ++i) {
+    // p reaches q at contact_time.
+    std::array<Vector2d, 4> x;  // p_t0, q_t0, p_t1, q_t1
+    for (Vector2d& point : x) point = {coordinate(random), coordinate(random)};
+    const double contact_time = time(random);
+    x[2] = x[0] + (lerp(x[1], x[3], contact_time) - x[0]) / contact_time;
+    const std::array<FencedPoint, 4> fenced = {FencedPoint(x[0]), FencedPoint(x[1]), FencedPoint(x[2]),
+                                               FencedPoint(x[3])};
+    double toi = -1, toi_fenced = -1, toi_spatial = -1;
+    ASSERT_TRUE(ipc::point_point_ccd(x[0], x[1], x[2], x[3], toi, min_distance)) << "impact " << i;
+    EXPECT_GE(toi, 0.0);
+    EXPECT_LE(toi, contact_time);
+    EXPECT_TRUE(ipc::point_point_ccd(fenced[0].view(), fenced[1].view(), fenced[2].view(), fenced[3].view(),
+                                     toi_fenced, min_distance));
+    EXPECT_TRUE(ipc::point_point_ccd(spatial(x[0]), spatial(x[1]), spatial(x[2]), spatial(x[3]), toi_spatial,
+                                     min_distance));
+    EXPECT_EQ(toi_fenced, toi_spatial);
+    EXPECT_EQ(toi, toi_spatial);
+  }
+  for (int i = 0; i < 400; ++i) {
+    // p stays in x >= 0.5, q in x <= 0.
+    std::array<Vector2d, 4> x;
+    for (Vector2d& point : x) point = {-right(random) + 0.5, coordinate(random)};
+    x[0].x() = right(random);
+    x[2].x() = right(random);
+    const std::array<FencedPoint, 4> fenced = {FencedPoint(x[0]), FencedPoint(x[1]), FencedPoint(x[2]),
+                                               FencedPoint(x[3])};
+    double toi = -1;
+    EXPECT_FALSE(ipc::point_point_ccd(x[0], x[1], x[2], x[3], toi, min_distance)) << "miss " << i;
+    EXPECT_FALSE(ipc::point_point_ccd(fenced[0].view(), fenced[1].view(), fenced[2].view(), fenced[3].view(), toi,
+                                      min_distance))
+        << "miss " << i;
+    EXPECT_EQ(toi, -1);
+  }
+}
+
+// A point crossing an edge in the plane, through every kind of 2-vector.
+TEST(IpcPlanar, EveryKindOfVector) {
+  const Vector2d p_t0(0.5, 1), p_t1(0.5, -1), e0(0, 0), e1(1, 0);
+  double toi = -1;
+  ASSERT_TRUE(ipc::point_edge_ccd(p_t0, e0, e1, p_t1, e0, e1, toi));
+  const double expected = toi;
+  EXPECT_LE(expected, 0.5);
+  EXPECT_GE(expected, 0.5 - 1e-4);
+
+  const VectorXd dynamic_p_t0 = p_t0, dynamic_p_t1 = p_t1, dynamic_e0 = e0, dynamic_e1 = e1;
+  toi = -1;
+  EXPECT_TRUE(ipc::point_edge_ccd(dynamic_p_t0, dynamic_e0, dynamic_e1, dynamic_p_t1, dynamic_e0, dynamic_e1, toi));
+  EXPECT_EQ(toi, expected);
+
+  const RefXd ref_p_t0(dynamic_p_t0), ref_p_t1(dynamic_p_t1), ref_e0(dynamic_e0), ref_e1(dynamic_e1);
+  toi = -1;
+  EXPECT_TRUE(ipc::point_edge_ccd(ref_p_t0, ref_e0, ref_e1, ref_p_t1, ref_e0, ref_e1, toi));
+  EXPECT_EQ(toi, expected);
+
+  // Rows of a matrix of points, and an expression.
+  Eigen::Matrix<double, 4, 2> rows;
+  rows << p_t0.transpose(), p_t1.transpose(), e0.transpose(), e1.transpose();
+  toi = -1;
+  EXPECT_TRUE(ipc::point_edge_ccd(rows.row(0), rows.row(2), rows.row(3), rows.row(1), rows.row(2), rows.row(3), toi));
+  EXPECT_EQ(toi, expected);
+  toi = -1;
+  EXPECT_TRUE(ipc::point_edge_ccd(p_t0, e0, e1, p_t0 + (p_t1 - p_t0), e0, e1, toi));
+  EXPECT_EQ(toi, expected);
+
+  // Fixed and dynamic lengths mixed: checked at run time, and they agree.
+  toi = -1;
+  EXPECT_TRUE(ipc::point_edge_ccd(p_t0, dynamic_e0, e1, dynamic_p_t1, e0, ref_e1, toi));
+  EXPECT_EQ(toi, expected);
+}
+
+// The message names the call and the argument.
+template <class Call>
+void expect_refused(Call call, const std::string& call_name, const std::string& argument) {
+  try {
+    call();
+    ADD_FAILURE() << "accepted; expected " << call_name << " to refuse " << argument;
+  } catch (const std::invalid_argument& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(call_name + ": " + argument + " "), std::string::npos) << message;
+  }
+}
+
+TEST(IpcPlanar, LengthsThatDoNotFitAreRefusedAtRunTime) {
+  const VectorXd planar = Vector2d(0.5, 1), spatial_point = Vec3(0.5, 1, 0), four = Eigen::Vector4d(0.5, 1, 0, 0);
+  const VectorXd one = VectorXd::Constant(1, 0.5), empty;
+  double toi = -1;
+  const std::string point_edge_name = "batchccd::ipc::point_edge_ccd";
+  const std::string point_point_name = "batchccd::ipc::point_point_ccd";
+  expect_refused([&] { ipc::point_edge_ccd(four, four, four, four, four, four, toi); }, point_edge_name, "p_t0");
+  expect_refused([&] { ipc::point_edge_ccd(one, one, one, one, one, one, toi); }, point_edge_name, "p_t0");
+  expect_refused([&] { ipc::point_edge_ccd(empty, empty, empty, empty, empty, empty, toi); }, point_edge_name,
+                 "p_t0");
+  expect_refused([&] { ipc::point_edge_ccd(planar, planar, planar, planar, planar, four, toi); }, point_edge_name,
+                 "e1_t1");
+  expect_refused([&] { ipc::point_edge_ccd(planar, planar, spatial_point, planar, planar, planar, toi); },
+                 point_edge_name, "e1_t0");
+  expect_refused([&] { ipc::point_edge_ccd(spatial_point, planar, spatial_point, spatial_point, spatial_point,
+                                           spatial_point, toi); },
+                 point_edge_name, "e0_t0");
+  // A fixed 2-vector among dynamic 3-vectors.
+  expect_refused([&] { ipc::point_point_ccd(spatial_point, spatial_point, Vector2d(0, 0), spatial_point, toi); },
+                 point_point_name, "p0_t1");
+  expect_refused([&] { ipc::point_point_ccd(four, four, four, four, toi); }, point_point_name, "p0_t0");
+  // 3D only: a dynamic 2-vector is refused too.
+  expect_refused([&] { ipc::point_triangle_ccd(planar, planar, planar, planar, planar, planar, planar, planar, toi); },
+                 "batchccd::ipc::point_triangle_ccd", "p_t0");
+  const Vec3 a(0, 0, 0);
+  expect_refused([&] { ipc::edge_edge_ccd(a, a, a, a, a, a, a, planar, toi); }, "batchccd::ipc::edge_edge_ccd",
+                 "eb1_t1");
+  EXPECT_EQ(toi, -1);
+}
+
+}  // namespace
