@@ -38,9 +38,9 @@ bool point_triangle(const Points& x, double& toi, double min_distance = 0, doubl
 }
 
 // ipc-toolkit's effective separation around Tight Inclusion: the caller's
-// plus min(0.2 d0, 1e-4) with the default rescaling 0.8.
+// plus min(0.2 (d0 - min_distance), 1e-4) with the default rescaling 0.8.
 double effective_separation(double initial_distance, double min_distance) {
-  return std::min(0.2 * initial_distance, 1e-4) + min_distance;
+  return std::min(0.2 * (initial_distance - min_distance), 1e-4) + min_distance;
 }
 
 TEST(IpcFront, PointTriangleStopsShortOfTheEffectiveSeparation) {
@@ -80,8 +80,12 @@ TEST(IpcFront, EveryKind) {
 TEST(IpcFront, NoMotionAndStartingWithinTheSeparation) {
   const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), p(0.25, 0.25, 0.05);
   double toi = -1;
-  // As ipc-toolkit: nothing moves, nothing new can happen.
-  EXPECT_FALSE(batchccd::ipc::point_triangle_ccd(p, a, b, c, p, a, b, c, toi, 0.1));
+  // As ipc-toolkit: nothing moves, so only the initial distance counts.
+  EXPECT_FALSE(batchccd::ipc::point_triangle_ccd(p, a, b, c, p, a, b, c, toi, 0.01));
+  EXPECT_EQ(toi, -1);
+  EXPECT_TRUE(batchccd::ipc::point_triangle_ccd(p, a, b, c, p, a, b, c, toi, 0.1));
+  EXPECT_EQ(toi, 0.0);
+  toi = -1;
   const Vec3 moved(0.25, 0.25, 0.5);
   EXPECT_TRUE(batchccd::ipc::point_triangle_ccd(p, a, b, c, moved, a, b, c, toi, 0.1));
   EXPECT_EQ(toi, 0.0);

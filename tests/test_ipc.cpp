@@ -1,5 +1,7 @@
 // The calls shaped like ipc-toolkit's (ipc.hpp): 2D points read as z = 0 and
-// never past their end, and 3D-only calls that refuse 2D points.
+// never past their end, 3D-only calls that refuse 2D points, and the rules
+// ipc-toolkit applies around its solver (no motion, the effective
+// separation, the retry of a small toi).
 #include <array>
 #include <cmath>
 #include <limits>
@@ -263,6 +265,105 @@ TEST(IpcPlanar, LengthsThatDoNotFitAreRefusedAtRunTime) {
   expect_refused([&] { ipc::edge_edge_ccd(a, a, a, a, a, a, a, planar, toi); }, "batchccd::ipc::edge_edge_ccd",
                  "eb1_t1");
   EXPECT_EQ(toi, -1);
+}
+
+// ipc-toolkit's rules around its solver.
+
+const Vec3 kA(0, 0, 0), kB(1, 0, 0), kC(0, 1, 0);  // the unit triangle in z = 0
+
+// Point (1/4, 1/4, height) moving by `motion` past the static unit triangle.
+bool point_over_triangle(double height, const Vec3& motion, double& toi, double min_distance,
+                         double tolerance = ipc::DEFAULT_CCD_TOLERANCE, long max_iterations = -1,
+                         double conservative_rescaling = ipc::DEFAULT_CCD_CONSERVATIVE_RESCALING) {
+  const Vec3 p(0.25, 0.25, height);
+  return ipc::point_triangle_ccd(p, kA, kB, kC, p + motion, kA, kB, kC, toi, min_distance, 1.0, tolerance,
+                                 max_iterations, conservative_rescaling);
+}
+
+// Nothing moves: only the initial distance counts, as there.
+TEST(IpcRules, NoMotionIsTheInitialDistanceCheck) {
+  double toi = -1;
+  EXPECT_TRUE(point_over_triangle(0, Vec3::Zero(), toi, 0));  // lying on the triangle
+  EXPECT_EQ(toi, 0.0);
+  toi = -1;
+  EXPECT_TRUE(point_over_triangle(0.25, Vec3::Zero(), toi, 0.25));
+  EXPECT_EQ(toi, 0.0);
+  toi = -1;
+  EXPECT_FALSE(point_over_triangle(0.25, Vec3::Zero(), toi, 0.125));
+  EXPECT_EQ(toi, -1);
+  // A point on a static edge in the plane, and a point on a point.
+  const Vector2d p(0.5, 0), e0(0, 0), e1(1, 0);
+  EXPECT_TRUE(ipc::point_edge_ccd(p, e0, e1, p, e0, e1, toi));
+  EXPECT_EQ(toi, 0.0);
+  toi = -1;
+  EXPECT_TRUE(ipc::point_point_ccd(p, p, p, p, toi));
+  EXPECT_EQ(toi, 0.0);
+  toi = -1;
+  EXPECT_FALSE(ipc::point_point_ccd(p, e0, p, e0, toi, 0.25));
+  EXPECT_EQ(toi, -1);
+}
+
+// The first ask keeps (1 - s)(d0 - min_distance), at most 1e-4, of the gap
+// above min_distance free. Falling straight at the triangle at speed 2^-10,
+// the distance is d0 - 2^-10 t, so it reaches a separation m at
+// (d0 - m) 2^10. With d0 = 2^-11, min_distance = 3 2^-13 and s = 3/4 (all
+// exact in binary) the separation is min_distance + 2^-15 (d0 alone in
+// place of the gap would give min_distance + 1e-4: toi 0.0225).
+TEST(IpcRules, EffectiveSeparationIsAFractionOfTheGap) {
+  const double initial_distance = 0x1p-11, min_distance = 3 * 0x1p-13, speed = 0x1p-10, rescaling = 0.75;
+  const double separation = min_distance + std::min((1 - rescaling) * (initial_distance - min_distance), 1e-4);
+  ASSERT_EQ(separation, min_distance + 0x1p-15);
+  const double exact_toi = (initial_distance - separation) / speed;  // 0.09375, above the retry's 1e-6
+  const double tolerance = 0x1p-40;  // the distance tolerance, 2^-30 of the step at this speed
+  double toi = -1;
+  ASSERT_TRUE(point_over_triangle(initial_distance, Vec3(0, 0, -speed), toi, min_distance, tolerance,
+                                  ipc::DEFAULT_CCD_MAX_ITERATIONS, rescaling));
+  EXPECT_LE(toi, exact_toi);
+  EXPECT_GE(toi, exact_toi - 1e-7 - tolerance / speed);
+}
+
+// A first toi below 1e-6 is asked again with min_distance itself, and
+// scaled by s. The first contact here comes 2^-25 into the step (the point
+// moving mostly along the triangle), inside the solver's first time
+// interval 1e-7 wide: its lower bound would be 0, a step a line search
+// cannot take. Resolved finely, the toi is positive and at least s times
+// the time the distance halves (d0 / 2 is the distance tolerance here), 36
+// times what the speed alone gives (the last resort).
+TEST(IpcRules, SmallToiIsResolvedNotZero) {
+  const double contact_time = 0x1p-25, normal_speed = 0x1p-7;
+  const Vec3 motion(0.25, 0.125, -normal_speed);
+  double toi = -1;
+  ASSERT_TRUE(point_over_triangle(normal_speed * contact_time, motion, toi, 0));
+  EXPECT_GT(toi, 0.0);
+  EXPECT_LE(toi, 0.8 * contact_time);
+  EXPECT_GE(toi, 0.8 * (0.5 * contact_time - 0x1p-45));
+}
+
+// Even 2^-45 of the step cannot tell a contact 2^-50 in from t = 0: the toi
+// is then s (d0 - min_distance) / (2 v), v the largest displacement (here 1).
+TEST(IpcRules, SmallToiBelowTheFinestResolutionIsBoundedBySpeed) {
+  for (const double min_distance : {0.0, 0.5}) {
+    const double gap = 0x1p-50;
+    double toi = -1;
+    ASSERT_TRUE(point_over_triangle(min_distance + gap, Vec3(0, 0, -1), toi, min_distance));
+    EXPECT_GT(toi, 0.0);
+    EXPECT_EQ(toi, 0.8 * gap / 2);
+  }
+}
+
+// The retry has no iteration limit, as there. With max_iterations 0 the
+// first ask gives up on these nearly parallel edges (b turns 2^-30 out of
+// a's direction) and reports toi 0; the retry still locates the contact,
+// when a (falling at speed 2 from 1 above b's nearest end) comes within
+// 1/8 of b: t = (1 - 1/8) / 2.
+TEST(IpcRules, SmallToiRetryHasNoIterationLimit) {
+  const Vec3 b0(0.5, 0, 0), b1(1.5, 0x1p-30, 0);
+  const double min_distance = 0.125, contact_time = (1 - min_distance) / 2;
+  double toi = -1;
+  ASSERT_TRUE(ipc::edge_edge_ccd(Vec3(0, 0, 1), Vec3(1, 0, 1), b0, b1, Vec3(0, 0, -1), Vec3(1, 0, -1), b0, b1, toi,
+                                 min_distance, 1.0, ipc::DEFAULT_CCD_TOLERANCE, /*max_iterations=*/0));
+  EXPECT_LE(toi, 0.8 * contact_time);
+  EXPECT_GE(toi, 0.8 * (contact_time - 1e-6));
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <array>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "batchccd/ccd.hpp"
@@ -18,6 +19,10 @@ namespace {
 constexpr double kInitialDistanceToleranceScale = 0.5;
 constexpr double kLargestRescalingSeparation = 1e-4;
 constexpr double kSmallToi = 1e-6;
+constexpr long kUnlimitedIterations = -1;
+
+// The finest time resolution the solver takes (Options::toi_tolerance).
+constexpr double kFinestToiTolerance = 0x1p-45;
 
 bool moves(const Query& query) {
   for (int k = 0; k < 4; ++k)
@@ -25,12 +30,41 @@ bool moves(const Query& query) {
   return false;
 }
 
+// How fast the distance between the primitives can fall: the largest
+// displacement of one primitive's points plus that of the other's (Query's
+// layout: VF p | a, b, c; the others x0, x1 | x2, x3).
+double approach_speed_bound(Kind kind, const Query& query) {
+  std::array<double, 4> displacement;
+  for (int k = 0; k < 4; ++k) displacement[k] = (query.points[k + 4] - query.points[k]).norm();
+  if (kind == Kind::vertex_face)
+    return displacement[0] + std::max({displacement[1], displacement[2], displacement[3]});
+  return std::max(displacement[0], displacement[1]) + std::max(displacement[2], displacement[3]);
+}
+
 QueryResult ask(Kind kind, const Query& query, double min_distance, double distance_tolerance, double tmax,
-                long max_iterations) {
+                long max_iterations, double toi_tolerance = Options{}.toi_tolerance) {
   Options options = fronts::conservative_options(query, distance_tolerance, max_iterations);
   options.tmax = tmax;
   options.min_distance = min_distance;
+  options.toi_tolerance = toi_tolerance;
   return query_ccd(kind, query, options);
+}
+
+// ipc-toolkit's retry when the first toi is too small to step: the
+// caller's separation itself, no iteration limit, the toi rescaled. As
+// initial_distance > min_distance the first contact comes after 0, so a
+// lower bound of 0 is not an answer (a zero step stalls a line search):
+// asked again as finely as the solver resolves time, then bounded by speed.
+QueryResult small_toi_retry(Kind kind, const Query& query, double initial_distance, double min_distance,
+                            double distance_tolerance, double tmax, double conservative_rescaling) {
+  QueryResult result = ask(kind, query, min_distance, distance_tolerance, tmax, kUnlimitedIterations);
+  if (result.hit && result.toi == 0)
+    result = ask(kind, query, min_distance, distance_tolerance, tmax, kUnlimitedIterations, kFinestToiTolerance);
+  if (result.hit && result.toi == 0)
+    result.toi = 0.5 * (initial_distance - min_distance) / approach_speed_bound(kind, query);
+  if (result.hit)
+    result.toi = std::max(result.toi * conservative_rescaling, std::numeric_limits<double>::denorm_min());
+  return result;
 }
 
 void require_lengths(const char* call, Kind kind, std::span<const detail::PointArgument> points) {
@@ -73,23 +107,22 @@ bool ccd(const char* call, Kind kind, std::span<const PointArgument> points, dou
     toi = 0;
     return true;
   }
-  if (!moves(query)) return false;
   const double initial_distance = std::sqrt(squared_distance(kind, query, 0));
-  if (initial_distance <= min_distance) {
+  if (initial_distance <= min_distance) {  // with or without motion, as there
     toi = 0;
     return true;
   }
-  if (tmax == 0) return false;
+  if (!moves(query) || tmax == 0) return false;
 
   const double distance_tolerance = std::min(kInitialDistanceToleranceScale * initial_distance, tolerance);
+  // Part of the gap above min_distance (at most 1e-4) kept free, as there.
   const double effective_separation =
-      std::min((1 - conservative_rescaling) * initial_distance, kLargestRescalingSeparation) + min_distance;
+      min_distance +
+      std::min((1 - conservative_rescaling) * (initial_distance - min_distance), kLargestRescalingSeparation);
   QueryResult result = ask(kind, query, effective_separation, distance_tolerance, tmax, max_iterations);
-  if (result.hit && result.toi < kSmallToi) {
-    // Too close to step: the separation alone, the step rescaled instead.
-    result = ask(kind, query, min_distance, distance_tolerance, tmax, max_iterations);
-    result.toi *= conservative_rescaling;
-  }
+  if (result.hit && result.toi < kSmallToi)
+    result = small_toi_retry(kind, query, initial_distance, min_distance, distance_tolerance, tmax,
+                             conservative_rescaling);
   if (result.hit) toi = result.toi;
   return result.hit;
 }

@@ -23,14 +23,25 @@
 //
 // Each call does what ipc-toolkit's does around Tight Inclusion, with
 // batchccd's conservative mode (Mode::conservative: never a false negative)
-// in its place:
-// - no motion (every point's t0 equals its t1): false;
-// - the initial distance d0 at or below min_distance: true, toi = 0;
-// - otherwise it asks for the first time the distance comes down to
-//   min_distance + min((1 - conservative_rescaling) d0, 1e-4) within
-//   [0, tmax], with the distance tolerance min(tolerance, d0 / 2); when that
-//   toi is below 1e-6, it asks again with min_distance alone and scales the
-//   toi by conservative_rescaling.
+// in its place. With d0 the initial distance and s = conservative_rescaling:
+// - d0 <= min_distance: true, toi = 0 (with or without motion);
+// - no motion (every point's t0 equals its t1), or tmax = 0: false;
+// - otherwise it asks for the first time in [0, tmax] the distance comes
+//   down to min_distance + min((1 - s)(d0 - min_distance), 1e-4), with the
+//   distance tolerance min(tolerance, d0 / 2) and max_iterations;
+// - when that toi is below 1e-6, it asks again with min_distance itself and
+//   no iteration limit, and returns s times that toi (false if that finds no
+//   contact). As d0 > min_distance the first contact comes after 0, and
+//   this toi is never 0 (Tight Inclusion's no_zero_toi; at least the
+//   smallest positive double): a lower bound of 0 is asked once more with
+//   time resolved to 2^-45 of the step (Options::toi_tolerance's floor).
+//   When that still returns 0 (the first contact, or a near miss within the
+//   tolerance, lies in the first 2^-45 of the step, below what the solver
+//   resolves), toi is s (d0 - min_distance) / (2 v), v the largest
+//   displacement of one primitive's points plus that of the other's: the
+//   distance falls no faster than v, so the first contact comes no earlier
+//   than (d0 - min_distance) / v, and half that leaves room for rounding. A
+//   lower bound as far as d0, computed in double precision, is exact.
 // Returns true when a contact counts, with toi a lower bound of the first
 // time the primitives come within min_distance (so a step to toi never
 // brings them closer than min_distance); false otherwise, toi unchanged.
@@ -44,6 +55,8 @@
 //   the step before the first contact within the tolerance.
 // - max_iterations: the solver's box budget (Options::max_iterations); a
 //   query that exhausts it is reported as a contact, never missed. -1: none.
+// - Tight Inclusion's no_zero_toi may shrink min_distance itself to get a
+//   toi above 0; here the separation stays the caller's (above).
 //
 // Bad input: std::invalid_argument when min_distance is negative or not
 // finite, tmax is not in [0, 1], tolerance is not positive and finite or
