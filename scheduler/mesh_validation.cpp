@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <span>
 
 #include <tbb/blocked_range.h>
@@ -22,6 +23,20 @@ template <class View>
 void check_three_columns(const View& matrix, const char* name) {
   if (matrix.rows() > 0 && matrix.cols() != 3)
     refuse(std::string(name) + " must have 3 columns, it has " + std::to_string(matrix.cols()));
+}
+
+// Positions are n x 3, or n x 2 for a 2D mesh (read as z = 0), the same
+// at t0 and t1; no rows: any column count.
+void check_position_columns(const MeshView& mesh) {
+  for (const auto& [positions, name] : {std::pair{&mesh.positions_t0, "positions_t0"},
+                                        std::pair{&mesh.positions_t1, "positions_t1"}}) {
+    if (positions->rows() > 0 && positions->cols() != 3 && positions->cols() != 2)
+      refuse(std::string(name) + " must have 3 columns (2 for a 2D mesh), it has " +
+             std::to_string(positions->cols()));
+  }
+  if (mesh.positions_t0.rows() > 0 && mesh.positions_t0.cols() != mesh.positions_t1.cols())
+    refuse("positions_t0 has " + std::to_string(mesh.positions_t0.cols()) + " columns but positions_t1 has " +
+           std::to_string(mesh.positions_t1.cols()) + ": a mesh is 2D or 3D at both times");
 }
 
 std::string range_text(std::int64_t count) { return " out of range [0, " + std::to_string(count) + ")"; }
@@ -71,8 +86,7 @@ bool all_in_range(const MeshView& mesh, const CandidateLists& candidates, ListsT
 void check_mesh(const MeshView& mesh, const CandidateLists& candidates, ListsToCheck lists) {
   const std::int64_t n = mesh.positions_t0.rows();
   const std::int64_t m = mesh.faces.rows();
-  check_three_columns(mesh.positions_t0, "positions_t0");
-  check_three_columns(mesh.positions_t1, "positions_t1");
+  check_position_columns(mesh);
   check_three_columns(mesh.faces, "faces");
   if (mesh.positions_t1.rows() != n)
     refuse("positions_t0 has " + std::to_string(n) + " rows but positions_t1 has " +

@@ -82,13 +82,14 @@ class PackedPositions {
   // Rows [begin, end): callers may fill disjoint ranges in parallel.
   void pack(const PositionsView& t0, const PositionsView& t1, std::int64_t begin, std::int64_t end) {
     bool finite = true, coarse = true;
+    const auto columns = t0.cols();  // 2: a 2D mesh, in the plane z = 0
     t0.visit([&](const auto& start) {
       t1.visit([&](const auto& stop) {
         for (std::int64_t v = begin; v < end; ++v) {
           double* row = rows_.get() + row_start(v);
           for (int c = 0; c < 3; ++c) {
-            row[c] = start(v, c);
-            row[c + 3] = stop(v, c);
+            row[c] = c < columns ? start(v, c) : 0.0;
+            row[c + 3] = c < columns ? stop(v, c) : 0.0;
           }
           row[6] = row[7] = 0;
           // x - x is 0 for finite x and a NaN otherwise, and so is the sum

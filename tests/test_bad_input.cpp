@@ -420,11 +420,15 @@ TEST(BadInputMesh, MismatchedPositionRowCountsAreRefused) {
 
 TEST(BadInputMesh, MatricesWithoutThreeColumnsAreRefused) {
   TestMesh mesh = degenerate_mesh();
-  mesh.t0.conservativeResize(10, 2);
-  expect_refused(mesh, "positions_t0 must have 3 columns");
+  mesh.t0.conservativeResize(10, 2);  // a 2D mesh at t0 only
+  expect_refused(mesh, "positions_t0 has 2 columns but positions_t1 has 3: a mesh is 2D or 3D at both times");
   mesh = degenerate_mesh();
   mesh.t1.conservativeResize(10, 4);
-  expect_refused(mesh, "positions_t1 must have 3 columns");
+  expect_refused(mesh, "positions_t1 must have 3 columns (2 for a 2D mesh), it has 4");
+  mesh = degenerate_mesh();
+  mesh.t0.conservativeResize(10, 1);
+  mesh.t1.conservativeResize(10, 1);
+  expect_refused(mesh, "positions_t0 must have 3 columns (2 for a 2D mesh), it has 1");
   mesh = degenerate_mesh();
   mesh.faces.conservativeResize(3, 2);
   expect_refused(mesh, "faces must have 3 columns");

@@ -273,6 +273,117 @@ TEST(PlanarCases, PointKinds) {
   }
 }
 
+// A 2D mesh (positions n x 2) means the mesh lifted to z = 0: every kind,
+// option and layout gives the lifted call's answers, which are exact
+// arithmetic's at separation 0.
+struct Mesh2D {
+  Eigen::MatrixXd t0, t1;  // n x 2
+  Eigen::MatrixXi faces;
+  Candidates candidates;
+};
+
+Mesh2D random_mesh_2d(unsigned seed) {
+  PlanarGenerator generator(seed);
+  Mesh2D mesh;
+  const int n = 40;
+  mesh.t0.resize(n, 2);
+  mesh.t1.resize(n, 2);
+  for (int v = 0; v < n; ++v) {
+    mesh.t0.row(v) << generator.coordinate(), generator.coordinate();
+    mesh.t1.row(v) = mesh.t0.row(v) + 0.5 * Eigen::RowVector2d(generator.coordinate(), generator.coordinate());
+  }
+  mesh.faces.resize(n / 3, 3);
+  for (int f = 0; f < n / 3; ++f) mesh.faces.row(f) << 3 * f, 3 * f + 1, 3 * f + 2;
+  for (int v = 0; v < n; ++v) {
+    for (int f = 0; f < n / 3; ++f)
+      if (v / 3 != f) mesh.candidates.vertex_face.push_back({v, f});
+    for (int e = 0; e + 1 < n; e += 2)
+      if (v != e && v != e + 1) mesh.candidates.vertex_edge.push_back({v, e, e + 1});
+    for (int w = v + 1; w < n; ++w) mesh.candidates.vertex_vertex.push_back({v, w});
+  }
+  for (int a = 0; a + 1 < n; a += 2)
+    for (int b = a + 2; b + 1 < n; b += 2) mesh.candidates.edge_edge.push_back({a, a + 1, b, b + 1});
+  return mesh;
+}
+
+Eigen::MatrixXd lifted(const Eigen::MatrixXd& positions) {
+  Eigen::MatrixXd result = Eigen::MatrixXd::Zero(positions.rows(), 3);
+  result.leftCols(2) = positions;
+  return result;
+}
+
+void expect_same_results(const BatchResult& a, const BatchResult& b) {
+  ASSERT_EQ(a.results.size(), b.results.size());
+  for (std::size_t i = 0; i < a.results.size(); ++i) {
+    EXPECT_EQ(a.results[i].hit, b.results[i].hit) << "candidate " << i;
+    EXPECT_EQ(a.results[i].toi, b.results[i].toi) << "candidate " << i;
+  }
+  EXPECT_EQ(a.hits.size(), b.hits.size());
+  EXPECT_EQ(a.earliest_toi, b.earliest_toi);
+  EXPECT_EQ(a.counters.hits, b.counters.hits);
+}
+
+TEST(Mesh2D, MeansTheMeshLiftedToThePlaneZ0) {
+  const Mesh2D mesh = random_mesh_2d(21);
+  const Eigen::MatrixXd t0 = lifted(mesh.t0), t1 = lifted(mesh.t1);
+  // Other layouts of the same 2D positions: row-major, and floats (the
+  // coordinates are dyadic with 17 bits: exact in float).
+  const Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> row_major_t0 = mesh.t0, row_major_t1 = mesh.t1;
+  const Eigen::MatrixXf float_t0 = mesh.t0.cast<float>(), float_t1 = mesh.t1.cast<float>();
+  std::vector<double> separations(mesh.candidates.vertex_edge.size());
+  for (std::size_t i = 0; i < separations.size(); ++i) separations[i] = 0.01 * static_cast<double>(i % 4);
+  int contacts = 0;
+  for (Mode mode : {Mode::conservative, Mode::exact})
+    for (double min_distance : {0.0, 0.02})
+      for (double tmax : {1.0, 0.5}) {
+        SCOPED_TRACE(::testing::Message() << to_string(mode) << " min_distance " << min_distance << " tmax " << tmax);
+        Options options = options_for(mode, tmax);
+        options.min_distance = min_distance;
+        options.hit_list = true;
+        const BatchResult three = mesh_ccd({t0, t1, mesh.faces}, mesh.candidates, options);
+        contacts += static_cast<int>(three.counters.hits);
+        expect_same_results(mesh_ccd({mesh.t0, mesh.t1, mesh.faces}, mesh.candidates, options), three);
+        expect_same_results(mesh_ccd({row_major_t0, row_major_t1, mesh.faces}, mesh.candidates, options), three);
+        expect_same_results(mesh_ccd({float_t0, float_t1, mesh.faces}, mesh.candidates, options), three);
+        BatchResult by_candidate, by_candidate_3d;
+        const MinDistances per_candidate{.vertex_edge = separations};
+        mesh_ccd({mesh.t0, mesh.t1, mesh.faces}, mesh.candidates, per_candidate, options, by_candidate);
+        mesh_ccd({t0, t1, mesh.faces}, mesh.candidates, per_candidate, options, by_candidate_3d);
+        expect_same_results(by_candidate, by_candidate_3d);
+        options.threads = 2;
+        options.isa = Isa::scalar;
+        expect_same_results(mesh_ccd({mesh.t0, mesh.t1, mesh.faces}, mesh.candidates, options), three);
+      }
+  EXPECT_GT(contacts, 100);
+}
+
+TEST(Mesh2D, AgreesWithExactArithmetic) {
+  const Mesh2D mesh = random_mesh_2d(22);
+  const MeshView view{mesh.t0, mesh.t1, mesh.faces};
+  const Eigen::MatrixXd t0 = lifted(mesh.t0), t1 = lifted(mesh.t1);
+  const MeshView view_3d{t0, t1, mesh.faces};
+  for (Mode mode : {Mode::conservative, Mode::exact}) {
+    const BatchResult result = mesh_ccd(view, mesh.candidates, options_for(mode));
+    std::size_t index = 0, hits = 0;
+    const auto check = [&](Kind kind, const Query& query) {
+      const exact::ExactOutcome expected = truth(kind, query);
+      hits += expected.hit;
+      expect_agrees(result.results[index++], expected, mode, query);
+    };
+    for (const auto& candidate : mesh.candidates.vertex_face)
+      check(Kind::vertex_face, vertex_face_query(view_3d, candidate));
+    for (const auto& candidate : mesh.candidates.edge_edge) check(Kind::edge_edge, edge_edge_query(view_3d, candidate));
+    for (const auto& [v, e0, e1] : mesh.candidates.vertex_edge)
+      check(Kind::vertex_edge, edge_edge_query(view_3d, {v, v, e0, e1}));
+    for (const auto& [v, w] : mesh.candidates.vertex_vertex) check(Kind::vertex_vertex, edge_edge_query(view_3d, {v, v, w, w}));
+    EXPECT_EQ(index, result.results.size());
+    EXPECT_GT(hits, 50u);
+    // The helper reads a 2D mesh as the lifted one.
+    EXPECT_EQ(vertex_face_query(view, mesh.candidates.vertex_face[5]).points,
+              vertex_face_query(view_3d, mesh.candidates.vertex_face[5]).points);
+  }
+}
+
 // The shared data's coplanar-motion queries (planar/), in every mode, and the
 // lanes against the scalar path: identical answers.
 TEST(PlanarSharedData, ZeroWrongDecisionsAndLanesMatchScalar) {

@@ -107,12 +107,19 @@ TEST(Views, CandidateListsAreReadInPlace) {
 
 TEST(Views, BadShapesAreRefusedWithTheirNames) {
   const Scene& s = scene();
-  const Eigen::MatrixXd two_columns = s.mesh.positions_t0.leftCols(2);
+  const Eigen::MatrixXd four_columns = Eigen::MatrixXd::Zero(s.mesh.positions_t0.rows(), 4);
+  try {
+    mesh_ccd({four_columns, s.mesh.positions_t1, s.mesh.faces}, s.candidates);
+    FAIL() << "not refused";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("positions_t0 must have 3 columns"), std::string::npos) << error.what();
+  }
+  const Eigen::MatrixXd two_columns = s.mesh.positions_t0.leftCols(2);  // 2D at t0, 3D at t1
   try {
     mesh_ccd({two_columns, s.mesh.positions_t1, s.mesh.faces}, s.candidates);
     FAIL() << "not refused";
   } catch (const std::invalid_argument& error) {
-    EXPECT_NE(std::string(error.what()).find("positions_t0 must have 3 columns"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("a mesh is 2D or 3D at both times"), std::string::npos) << error.what();
   }
   const Eigen::MatrixXf fewer_rows = s.mesh.positions_t1.topRows(3).cast<float>();
   try {

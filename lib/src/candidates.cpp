@@ -16,18 +16,21 @@ void check_id(const char* what, int id, std::int64_t count, const char* caller) 
 }
 
 void check_positions(const MeshView& mesh, const char* caller) {
-  if (mesh.positions_t0.cols() != 3 || mesh.positions_t1.cols() != 3 ||
+  const auto columns = mesh.positions_t0.cols();
+  if ((columns != 3 && columns != 2) || mesh.positions_t1.cols() != columns ||
       mesh.positions_t0.rows() != mesh.positions_t1.rows())
-    throw std::invalid_argument(std::string(caller) + ": positions must be n x 3 at t0 and at t1");
+    throw std::invalid_argument(std::string(caller) + ": positions must be n x 3 (or n x 2) at t0 and at t1");
 }
 
-// Vertices ids[0..3] at t0, then at t1; the ids are checked by the caller.
+// Vertices ids[0..3] at t0, then at t1 (z = 0 for a 2D mesh); the ids are
+// checked by the caller.
 Query query_of(const MeshView& mesh, const std::array<int, 4>& ids) {
+  const auto columns = mesh.positions_t0.cols();
   Query query;
   for (std::size_t k = 0; k < 4; ++k) {
     for (int c = 0; c < 3; ++c) {
-      query.points[k][c] = mesh.positions_t0(ids[k], c);
-      query.points[k + 4][c] = mesh.positions_t1(ids[k], c);
+      query.points[k][c] = c < columns ? mesh.positions_t0(ids[k], c) : 0.0;
+      query.points[k + 4][c] = c < columns ? mesh.positions_t1(ids[k], c) : 0.0;
     }
   }
   return query;

@@ -660,9 +660,10 @@ PYBIND11_MODULE(_batchccd, m) {
 
 Broad-phase candidates over a mesh, evaluated in parallel (batch.hpp).
 
-x0, x1       vertex positions at t0 and t1, n x 3, float64 or float32, any
-             order or strides (read in place; copied once when the strides
-             are not whole elements or the array is misaligned).
+x0, x1       vertex positions at t0 and t1, n x 3 (or n x 2 at both: a 2D
+             mesh, read as z = 0), float64 or float32, any order or strides
+             (read in place; copied once when the strides are not whole
+             elements or the array is misaligned).
 faces        triangles, m x 3 vertex ids (int32 in place; other integer
              dtypes copied once, each value checked to fit).
 edges        k x 2 vertex ids, for candidates that name edges by id.

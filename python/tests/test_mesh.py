@@ -165,3 +165,21 @@ def test_counters_add_up(scene):
     assert c["candidates"] == c["culled"] + c["solved"] and c["culled"] > 0
     assert c["culled"] == (c["culled_by_sign"] + c["culled_by_separation"] + c["culled_by_pieces"]
                            + c["culled_by_swept_box"])
+
+
+def test_a_2d_mesh_is_the_mesh_lifted_to_z_0():
+    rng = np.random.default_rng(5)
+    n = 30
+    x0 = np.round(rng.uniform(-1, 1, (n, 2)) * 2**16) / 2**16
+    x1 = x0 + np.round(rng.uniform(-0.5, 0.5, (n, 2)) * 2**16) / 2**16
+    edges = np.array([[e, e + 1] for e in range(0, n - 1, 2)], dtype=np.int32)
+    vertex_edge = np.array([[v, a, b] for v in range(n) for a, b in edges if v not in (a, b)], dtype=np.int32)
+    vertex_vertex = np.array([[v, w] for v in range(n) for w in range(v + 1, n)], dtype=np.int32)
+    lift = lambda x: np.column_stack([x, np.zeros(n)])  # noqa: E731
+    for options in ({}, {"mode": "exact"}, {"min_distance": 0.05}):
+        flat = batchccd.mesh_ccd(x0, x1, vertex_edge=vertex_edge, vertex_vertex=vertex_vertex, **options)
+        lifted = batchccd.mesh_ccd(lift(x0), lift(x1), vertex_edge=vertex_edge, vertex_vertex=vertex_vertex, **options)
+        assert np.array_equal(flat.hit, lifted.hit) and np.array_equal(flat.toi, lifted.toi)
+        assert 0 < flat.hit.sum() < len(flat.hit)
+    with pytest.raises(ValueError, match="a mesh is 2D or 3D at both times"):
+        batchccd.mesh_ccd(x0, lift(x1), vertex_edge=vertex_edge)

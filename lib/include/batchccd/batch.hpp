@@ -89,6 +89,13 @@ BatchResult batch_ccd(Kind kind, std::span<const Query> queries,
 // length unit), triangles (m x 3 vertex ids) and, for candidates given by
 // edge id (mesh_edges.hpp), edges (k x 2 vertex ids). Faces or edges a call
 // does not read may be left empty.
+// A 2D mesh has positions n x 2 at both times: every call, option and
+// promise is the same, as for the mesh lifted to the plane z = 0. A 2D
+// simulator's candidates are vertex-edge (a vertex against a boundary
+// segment: the first contact of two 2D bodies is always one) and, at a
+// separation, vertex-vertex; edge-edge (segments crossing) and vertex-face
+// (a vertex inside a triangle) mean what they mean in the plane. Motion in
+// a plane is decided there (docs/design.md §5a).
 struct MeshView {
   PositionsView positions_t0;
   PositionsView positions_t1;
@@ -132,8 +139,8 @@ struct MinDistances {
 // Bad input (tests/test_bad_input.cpp). The whole call is refused, before
 // any result is written, with std::invalid_argument naming the first bad
 // item, when the options fail validate(), positions_t0 and positions_t1
-// differ in row count, positions or faces with rows do not have 3
-// columns, or an index is out of range: a face's
+// differ in row count or in column count, positions with rows have neither
+// 3 nor 2 columns, faces with rows do not have 3, or an index is out of range: a face's
 // vertex, or a candidate's vertex or face id (negative or too large), in
 // every candidate list, also one that Options switches off. An empty mesh
 // (0 rows; default-constructed views too) is valid; with no

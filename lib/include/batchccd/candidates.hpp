@@ -23,7 +23,7 @@ Eigen::MatrixXi unique_edges(const IdsView& faces);
 // then at t1, in Query's point order (vertex, then the face's corners in
 // the order of its row; edge a, then edge b). Throws std::invalid_argument
 // naming the bad id when a vertex or face id is out of range or the
-// positions are not n x 3 at both times.
+// positions are not n x 3 (or n x 2, a 2D mesh: z = 0) at both times.
 Query vertex_face_query(const MeshView& mesh, const std::array<int, 2>& candidate);
 Query edge_edge_query(const MeshView& mesh, const std::array<int, 4>& candidate);
 

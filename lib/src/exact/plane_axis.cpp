@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include <Eigen/Geometry>
 
@@ -31,13 +33,15 @@ std::optional<Query> normalized(const Query& query) {
   double largest = 0;
   for (const Vec3& point : query.points) largest = std::max(largest, point.cwiseAbs().maxCoeff());
   if (largest == 0) return std::nullopt;
-  Query result;
   const int exponent = -std::ilogb(largest);
+  if (exponent < -1000 || exponent > 1000) return std::nullopt;  // 2^exponent is one double
+  const double factor = std::ldexp(1.0, exponent);
+  Query result;
   for (int i = 0; i < 8; ++i) {
     for (int axis = 0; axis < 3; ++axis) {
       const double coordinate = query.points[i][axis];
       if (coordinate != 0 && std::fabs(coordinate) < 0x1p-200 * largest) return std::nullopt;
-      result.points[i][axis] = std::ldexp(coordinate, exponent);
+      result.points[i][axis] = coordinate * factor;  // exact: the result stays a normal double
     }
   }
   return result;
@@ -93,6 +97,58 @@ class ExactPlane {
 
 double largest_component(const Vec3& v) { return v.cwiseAbs().maxCoeff(); }
 
+#ifdef __SIZEOF_INT128__
+__extension__ using Int128 = __int128;
+
+// Coordinates below 2 in magnitude (normalized) on a common grid of 2^-39
+// or coarser, as exact integers: then an orientation fits in 128 bits
+// (differences below 2^41, normal components below 2^83, a dot below
+// 2^126), far cheaper than expansions. Synthetic and quantized data
+// usually are; nullopt when the grid is finer.
+using GridPoints = std::array<std::array<std::int64_t, 3>, 8>;
+std::optional<GridPoints> on_integer_grid(const Query& normalized) {
+  int lowest = 1;  // the exponent of the lowest set bit of any coordinate
+  for (const Vec3& point : normalized.points)
+    for (int axis = 0; axis < 3; ++axis) {
+      if (point[axis] == 0) continue;
+      // A normal double is (2^52 + fraction) 2^(biased exponent - 1075).
+      const auto bits = std::bit_cast<std::uint64_t>(point[axis]);
+      const int biased = static_cast<int>((bits >> 52) & 0x7ff);
+      const std::uint64_t significand = (bits & ((std::uint64_t{1} << 52) - 1)) | (std::uint64_t{1} << 52);
+      lowest = std::min(lowest, biased - 1075 + std::countr_zero(significand));
+    }
+  if (lowest < -39) return std::nullopt;
+  const double factor = std::ldexp(1.0, -lowest);
+  GridPoints grid;
+  for (int i = 0; i < 8; ++i)
+    for (int axis = 0; axis < 3; ++axis)
+      grid[i][axis] = static_cast<std::int64_t>(normalized.points[i][axis] * factor);
+  return grid;
+}
+
+// The plane test of exact_plane_axis on grid integers: nullopt when a point
+// is off the plane of the references or the projection along `axis` folds it.
+bool integer_plane(const GridPoints& p, int origin, int far, int third, int axis) {
+  std::array<std::int64_t, 3> ab, ac;
+  for (int i = 0; i < 3; ++i) {
+    ab[i] = p[far][i] - p[origin][i];
+    ac[i] = p[third][i] - p[origin][i];
+  }
+  std::array<Int128, 3> normal;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    normal[i] = Int128{ab[j]} * ac[k] - Int128{ab[k]} * ac[j];
+  }
+  if (normal[axis] == 0) return false;  // the references fold onto a line there
+  for (int d = 0; d < 8; ++d) {
+    Int128 dot = 0;
+    for (int i = 0; i < 3; ++i) dot += normal[i] * (p[d][i] - p[origin][i]);
+    if (dot != 0) return false;
+  }
+  return true;
+}
+#endif
+
 }  // namespace
 
 std::optional<int> exact_plane_axis(const Query& query) {
@@ -127,6 +183,10 @@ std::optional<int> exact_plane_axis(const Query& query) {
     return true;
   };
   if (!others(may_be_in_plane)) return std::nullopt;  // a generic query leaves here
+#ifdef __SIZEOF_INT128__
+  if (const std::optional<GridPoints> grid = on_integer_grid(*scaled))
+    return integer_plane(*grid, 0, far, third, axis) ? std::optional<int>(axis) : std::nullopt;
+#endif
   if (orientation_2d(origin, points[far], points[third], axis) == 0) return std::nullopt;
   const ExactPlane plane(origin, points[far], points[third]);
   const auto in_plane = [&](const Vec3&, const Vec3&, const Vec3&, const Vec3& d) { return plane.contains(d); };

@@ -214,22 +214,26 @@ class PlanarSearch {
       : shape_(shape), motion_(motion), toi_width_(toi_width) {}
 
   PlanarOutcome run(double tmax) {
+    // The conditions' factors at both ends ride along, so that a split
+    // interpolates the points at its middle only.
     struct Interval {
       double start, end;
+      Factors at_start, at_end;
     };
-    std::array<Interval, 64> stack;  // depth first: at most one pending half a level
+    std::array<Interval, 48> stack;  // depth first: at most one pending half a level, 45 levels
     int pending = 0;
-    stack[pending++] = {0, tmax};
+    stack[pending++] = {0, tmax, factors_at(0), factors_at(tmax)};
     for (int budget = kIntervalBudget; pending > 0; --budget) {
       if (budget == 0) return {};
       const Interval interval = stack[--pending];
-      const Step step = examine(interval.start, interval.end);
+      const Step step = examine(interval.start, interval.end, interval.at_start, interval.at_end);
       if (step.outcome) return *step.outcome;
       if (!step.split) continue;
-      const double middle = 0.5 * (interval.start + interval.end);
       if (interval.end - interval.start <= kSmallestWidth) return {};
-      stack[pending++] = {middle, interval.end};
-      stack[pending++] = {interval.start, middle};
+      const double middle = 0.5 * (interval.start + interval.end);
+      const Factors at_middle = factors_at(middle);
+      stack[pending++] = {middle, interval.end, at_middle, interval.at_end};
+      stack[pending++] = {interval.start, middle, interval.at_start, at_middle};
     }
     return {true, false, 0, 0};  // every interval excluded
   }
@@ -244,14 +248,14 @@ class PlanarSearch {
     return {motion_.at(0, t), motion_.at(1, t), motion_.at(2, t)};
   }
 
-  Ball condition_at(int index, double t) const {
+  Ball condition_at(int index, double t) const { return value(factors_at(t)[index]); }
+
+  Factors factors_at(double t) const {
     const std::array<Point2, 3> p = points_at(t);
-    return value(factors(shape_, p[0], p[1], p[2])[index]);
+    return factors(shape_, p[0], p[1], p[2]);
   }
 
-  Step examine(double start, double end) const {
-    const std::array<Point2, 3> s = points_at(start), e = points_at(end);
-    const Factors at_start = factors(shape_, s[0], s[1], s[2]), at_end = factors(shape_, e[0], e[1], e[2]);
+  Step examine(double start, double end, const Factors& at_start, const Factors& at_end) const {
     Quadratics q;
     std::array<int, kConditions> over{}, first{}, last{};
     for (int i = 0; i < condition_count(shape_); ++i) {

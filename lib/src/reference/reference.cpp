@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 #include "exact/exact_solver.hpp"
 #include "exact/first_root.hpp"
 #include "exact/plane_axis.hpp"
@@ -89,6 +91,20 @@ bool decide_in_plane(Kind kind, const Query& query, const ScaledQuery& scaled, c
   return true;
 }
 
+// Whether the query certainly misses in its projection along the axis its
+// points' planes lean on most: then it misses in 3D (docs/design.md §5a).
+bool misses_in_projection(Kind kind, const Query& query, const ScaledQuery& scaled, double tmax) {
+  Vec3 normals = Vec3::Zero();
+  for (int tau = 0; tau < 2; ++tau) {
+    const Vec3 &a = scaled.relative[0][tau], &b = scaled.relative[1][tau], &c = scaled.relative[2][tau];
+    normals += a.cross(b).cwiseAbs() + a.cross(c).cwiseAbs() + b.cross(c).cwiseAbs();
+  }
+  int axis = 0;
+  normals.maxCoeff(&axis);
+  const PlanarOutcome outcome = solve_planar(planar_shape(kind, query), scaled, axis, tmax, 1);
+  return outcome.certain && !outcome.hit;
+}
+
 Evaluation evaluate(Kind kind, const Query& query, const Options& options, const lab::Settings& lab,
                     bool filtered) {
   Evaluation evaluation;
@@ -136,6 +152,11 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, const
   // iterations, or undecidable at the smallest boxes) would be guesses.
   // Exact arithmetic settles them (docs/design.md §7).
   const bool conservative = decider == Decider::conservative;
+  // Nearly planar motion is where the search stays uncertain, and where a
+  // projection onto the plane often proves a miss (docs/design.md §5a).
+  if (!outcome.certain && (exact || conservative) && lab.planar_path &&
+      misses_in_projection(kind, query, scaled, options.tmax))
+    return evaluation;
   if (!outcome.certain && (exact || (conservative && !outcome.within_tolerance))) {
     settle_exactly(kind, query, options, evaluation);
     return evaluation;
