@@ -214,26 +214,22 @@ class PlanarSearch {
       : shape_(shape), motion_(motion), toi_width_(toi_width) {}
 
   PlanarOutcome run(double tmax) {
-    // The conditions' factors at both ends ride along, so that a split
-    // interpolates the points at its middle only.
     struct Interval {
       double start, end;
-      Factors at_start, at_end;
     };
     std::array<Interval, 48> stack;  // depth first: at most one pending half a level, 45 levels
     int pending = 0;
-    stack[pending++] = {0, tmax, factors_at(0), factors_at(tmax)};
+    stack[pending++] = {0, tmax};
     for (int budget = kIntervalBudget; pending > 0; --budget) {
       if (budget == 0) return {};
       const Interval interval = stack[--pending];
-      const Step step = examine(interval.start, interval.end, interval.at_start, interval.at_end);
+      const Step step = examine(interval.start, interval.end);
       if (step.outcome) return *step.outcome;
       if (!step.split) continue;
       if (interval.end - interval.start <= kSmallestWidth) return {};
       const double middle = 0.5 * (interval.start + interval.end);
-      const Factors at_middle = factors_at(middle);
-      stack[pending++] = {middle, interval.end, at_middle, interval.at_end};
-      stack[pending++] = {interval.start, middle, interval.at_start, at_middle};
+      stack[pending++] = {middle, interval.end};
+      stack[pending++] = {interval.start, middle};
     }
     return {true, false, 0, 0};  // every interval excluded
   }
@@ -255,7 +251,8 @@ class PlanarSearch {
     return factors(shape_, p[0], p[1], p[2]);
   }
 
-  Step examine(double start, double end, const Factors& at_start, const Factors& at_end) const {
+  Step examine(double start, double end) const {
+    const Factors at_start = factors_at(start), at_end = factors_at(end);
     Quadratics q;
     std::array<int, kConditions> over{}, first{}, last{};
     for (int i = 0; i < condition_count(shape_); ++i) {
