@@ -17,6 +17,7 @@
 // with where the time goes.
 #include <benchmark/benchmark.h>
 
+#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <map>
@@ -26,6 +27,9 @@
 #include "batchccd/batchccd.hpp"
 #include "batchccd/lab.hpp"
 #include "broad_phase.hpp"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 namespace batchccd {
 namespace {
@@ -146,6 +150,68 @@ void MethodOnDenseList(benchmark::State& state, const std::string& name, lab::Me
   }
 }
 
+// ipc-toolkit's collision-free step on a dense list, at min_distance =
+// separation mean edge lengths, on `threads` threads: the batch call
+// (ipc::collision_free_stepsize), against batchccd's per-query calls driven
+// as ipc-toolkit's compute_collision_free_stepsize drives its narrow phase
+// (a parallel loop over the candidates, each asked with tmax = the earliest
+// toi so far, an atomic minimum). Counter: the step, the same for both.
+void CollisionFreeStepOnDenseList(benchmark::State& state, const std::string& name, double separation,
+                                  bool batch, int threads) {
+  const DenseList* list = dense_list(name);
+  if (list == nullptr) {
+    state.SkipWithError("../shared/data/scenes is absent");
+    return;
+  }
+  const MeshView view{list->scene.positions_t0, list->scene.positions_t1, list->scene.faces};
+  const double min_distance = separation * list->mean_edge_length;
+  const auto per_query_loop = [&] {
+    std::atomic<double> earliest{1.0};
+    const auto lower_to = [&](double toi) {
+      double current = earliest.load();
+      while (toi < current && !earliest.compare_exchange_weak(current, toi)) {
+      }
+    };
+    const auto& vertex_face = list->candidates.vertex_face;
+    const auto& edge_edge = list->candidates.edge_edge;
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+      tbb::parallel_for(std::size_t{0}, vertex_face.size() + edge_edge.size(), [&](std::size_t i) {
+        double toi = 1;
+        const double tmax = earliest.load();
+        const bool hit = i < vertex_face.size() ? [&] {
+          const Query q = vertex_face_query(view, vertex_face[i]);
+          const auto& p = q.points;
+          return ipc::point_triangle_ccd(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], toi, min_distance, tmax);
+        }()
+                                                : [&] {
+          const Query q = edge_edge_query(view, edge_edge[i - vertex_face.size()]);
+          const auto& p = q.points;
+          return ipc::edge_edge_ccd(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], toi, min_distance, tmax);
+        }();
+        if (hit) lower_to(toi);
+      });
+    });
+    return earliest.load();
+  };
+  const auto run = [&] {
+    const CandidateLists lists{.vertex_face = list->candidates.vertex_face, .edge_edge = list->candidates.edge_edge};
+    return batch ? ipc::collision_free_stepsize(view, lists, min_distance, ipc::DEFAULT_CCD_TOLERANCE,
+                                                ipc::DEFAULT_CCD_MAX_ITERATIONS,
+                                                ipc::DEFAULT_CCD_CONSERVATIVE_RESCALING, threads)
+                 : per_query_loop();
+  };
+  double step = run();
+  for (auto _ : state) {
+    step = run();
+    benchmark::DoNotOptimize(step);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(list->candidates.vertex_face.size() +
+                                                    list->candidates.edge_edge.size()) *
+                          state.iterations());
+  state.counters["step"] = step;
+}
+
 const bool registered = [] {
   for (const char* name : kSceneNames)
     for (const double separation : kSeparations)
@@ -165,6 +231,18 @@ const bool registered = [] {
                                    MethodOnDenseList, std::string(name), method, separation)
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime();
+  for (const char* name : kSceneNames)
+    for (const double separation : {0.0, 1e-3})
+      for (const int threads : {1, 2})
+        for (const bool batch : {true, false})
+          benchmark::RegisterBenchmark(("CollisionFreeStep/" + std::string(name) + "/min_distance_" +
+                                        std::to_string(separation).substr(0, 5) +
+                                        (batch ? "/batch" : "/per_query_loop") + "/threads_" + std::to_string(threads))
+                                           .c_str(),
+                                       CollisionFreeStepOnDenseList, std::string(name), separation, batch, threads)
+              ->Unit(benchmark::kMillisecond)
+              ->UseRealTime()
+              ->Iterations(batch ? 3 : 1);
   return true;
 }();
 

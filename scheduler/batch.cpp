@@ -1,7 +1,9 @@
 #include "batchccd/batch.hpp"
+#include "batchccd/ipc_stepsize.hpp"
 #include "batchccd/lab.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <numeric>
 #include <stdexcept>
 #include <vector>
@@ -16,6 +18,7 @@
 #include "arena.hpp"
 #include "mesh_validation.hpp"
 #include "decider.hpp"
+#include "ipc_rules.hpp"
 #include "reference/reference.hpp"
 #include "reference/scaled_query.hpp"
 #include "separation_check.hpp"
@@ -268,23 +271,42 @@ std::vector<std::array<int, 4>> as_edge_edge(const CandidateLists& candidates, c
   return pairs;
 }
 
-void lab::mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const MinDistances& min_distances,
-                   const Options& options, const Settings& lab, BatchResult& out) {
+namespace {
+
+// A mesh call's four lists once the lane filters have run: where each
+// list's candidates come from, how many there are (0 when Options switches
+// the list off), their separations, and their survivors (all of them for
+// the unfiltered baseline: `filtered` false).
+struct FilteredMesh {
+  const simd::MeshVertexFace& vertex_face;
+  const simd::MeshEdgeEdge& edge_edge;
+  const simd::MeshEdgeEdge& vertex_edge;
+  const simd::MeshEdgeEdge& vertex_vertex;
+  std::array<std::size_t, 4> counts;
+  std::array<Separations, 4> separations;
+  std::array<std::vector<std::size_t>, 4>& survivors;
+  bool filtered;
+};
+
+// Checks the mesh and the options, packs the positions, runs the lane
+// filters over every list, then `then(FilteredMesh&, Partials&)`, all in
+// the arena of Options::threads. A refusal leaves the caller's results as
+// they were.
+template <class Then>
+void filter_mesh(const MeshView& mesh, const CandidateLists& candidates, const MinDistances& min_distances,
+                 const Options& options, const lab::Settings& lab, Then then) {
   validate(options, lab);
   const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
   const bool filtered = decider_of(options, lab) != Decider::cubic;  // the baseline runs unfiltered
-  const std::size_t vertex_face = options.vertex_face ? candidates.vertex_face.size() : 0;
-  const std::size_t edge_edge = options.edge_edge ? candidates.edge_edge.size() : 0;
-  const std::size_t vertex_edge = options.vertex_edge ? candidates.vertex_edge.size() : 0;
-  const std::size_t vertex_vertex = options.vertex_vertex ? candidates.vertex_vertex.size() : 0;
-  const Separations vertex_face_separations =
-      separations_of(min_distances.vertex_face, candidates.vertex_face.size(), "vertex-face", options, lab);
-  const Separations edge_edge_separations =
-      separations_of(min_distances.edge_edge, candidates.edge_edge.size(), "edge-edge", options, lab);
-  const Separations vertex_edge_separations =
-      separations_of(min_distances.vertex_edge, candidates.vertex_edge.size(), "vertex-edge", options, lab);
-  const Separations vertex_vertex_separations = separations_of(
-      min_distances.vertex_vertex, candidates.vertex_vertex.size(), "vertex-vertex", options, lab);
+  const std::array<std::size_t, 4> counts{options.vertex_face ? candidates.vertex_face.size() : 0,
+                                          options.edge_edge ? candidates.edge_edge.size() : 0,
+                                          options.vertex_edge ? candidates.vertex_edge.size() : 0,
+                                          options.vertex_vertex ? candidates.vertex_vertex.size() : 0};
+  const std::array<Separations, 4> separations{
+      separations_of(min_distances.vertex_face, candidates.vertex_face.size(), "vertex-face", options, lab),
+      separations_of(min_distances.edge_edge, candidates.edge_edge.size(), "edge-edge", options, lab),
+      separations_of(min_distances.vertex_edge, candidates.vertex_edge.size(), "vertex-edge", options, lab),
+      separations_of(min_distances.vertex_vertex, candidates.vertex_vertex.size(), "vertex-vertex", options, lab)};
   in_arena(options.threads, [&] {
     // The lane filters check the ids of every list they read on the way;
     // here the rest: shapes, faces, lists switched off, the baseline's lists.
@@ -298,38 +320,49 @@ void lab::mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const
                         packed.pack(mesh.positions_t0, mesh.positions_t1, rows.begin(), rows.end());
                       });
     // Faces only where the vertex-face list is read.
-    const simd::PackedFaces faces(mesh.faces, vertex_face > 0 ? mesh.faces.rows() : 0);
+    const simd::PackedFaces faces(mesh.faces, counts[0] > 0 ? mesh.faces.rows() : 0);
     const std::vector<std::array<int, 4>> point_pairs = as_edge_edge(candidates, options);
     const simd::MeshVertexFace vertex_face_source{packed.view(), faces.view(), candidates.vertex_face.data()};
     const simd::MeshEdgeEdge edge_edge_source{packed.view(), candidates.edge_edge.data()};
     const simd::MeshEdgeEdge vertex_edge_source{packed.view(), point_pairs.data()};
-    const simd::MeshEdgeEdge vertex_vertex_source{packed.view(), point_pairs.data() + vertex_edge};
+    const simd::MeshEdgeEdge vertex_vertex_source{packed.view(), point_pairs.data() + counts[2]};
     Partials partials;
-    std::vector<std::size_t> survivors[4];
+    std::array<std::vector<std::size_t>, 4> survivors;
     if (filtered) {
       try {
-        survivors[0] = filter_source(vertex_face_source, vertex_face, kernels.vertex_face, options, lab,
-                                     vertex_face_separations, partials);
-        survivors[1] = filter_source(edge_edge_source, edge_edge, kernels.edge_edge, options, lab,
-                                     edge_edge_separations, partials);
-        survivors[2] = filter_source(vertex_edge_source, vertex_edge, kernels.edge_edge, options, lab,
-                                     vertex_edge_separations, partials);
-        survivors[3] = filter_source(vertex_vertex_source, vertex_vertex, kernels.edge_edge, options, lab,
-                                     vertex_vertex_separations, partials);
+        survivors[0] = filter_source(vertex_face_source, counts[0], kernels.vertex_face, options, lab,
+                                     separations[0], partials);
+        survivors[1] = filter_source(edge_edge_source, counts[1], kernels.edge_edge, options, lab,
+                                     separations[1], partials);
+        survivors[2] = filter_source(vertex_edge_source, counts[2], kernels.edge_edge, options, lab,
+                                     separations[2], partials);
+        survivors[3] = filter_source(vertex_vertex_source, counts[3], kernels.edge_edge, options, lab,
+                                     separations[3], partials);
       } catch (const simd::IndexOutOfRange&) {
         check_mesh(mesh, candidates);  // names the first bad id
         throw std::logic_error("mesh_ccd: a filter found an index out of range that check_mesh did not");
       }
     }
+    FilteredMesh lists{vertex_face_source, edge_edge_source, vertex_edge_source, vertex_vertex_source,
+                       counts, separations, survivors, filtered};
+    then(lists, partials);
+  });
+}
+
+}  // namespace
+
+void lab::mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const MinDistances& min_distances,
+                   const Options& options, const Settings& lab, BatchResult& out) {
+  filter_mesh(mesh, candidates, min_distances, options, lab, [&](FilteredMesh& lists, Partials& partials) {
+    const auto& [vertex_face, edge_edge, vertex_edge, vertex_vertex] = lists.counts;
     reset(out, vertex_face + edge_edge + vertex_edge + vertex_vertex, options);
-    const auto solved = [&](int list) { return filtered ? &survivors[list] : nullptr; };
-    solve_source(vertex_face_source, vertex_face, solved(0), options, lab, vertex_face_separations, 0, out,
+    const auto solved = [&](int list) { return lists.filtered ? &lists.survivors[list] : nullptr; };
+    solve_source(lists.vertex_face, vertex_face, solved(0), options, lab, lists.separations[0], 0, out, partials);
+    solve_source(lists.edge_edge, edge_edge, solved(1), options, lab, lists.separations[1], vertex_face, out,
                  partials);
-    solve_source(edge_edge_source, edge_edge, solved(1), options, lab, edge_edge_separations, vertex_face,
-                 out, partials);
-    solve_source(vertex_edge_source, vertex_edge, solved(2), options, lab, vertex_edge_separations,
+    solve_source(lists.vertex_edge, vertex_edge, solved(2), options, lab, lists.separations[2],
                  vertex_face + edge_edge, out, partials);
-    solve_source(vertex_vertex_source, vertex_vertex, solved(3), options, lab, vertex_vertex_separations,
+    solve_source(lists.vertex_vertex, vertex_vertex, solved(3), options, lab, lists.separations[3],
                  vertex_face + edge_edge + vertex_edge, out, partials);
     combine(partials, out);
   });
@@ -355,6 +388,52 @@ void mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const Opti
 
 BatchResult mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const Options& options) {
   return lab::mesh_ccd(mesh, candidates, options, {});
+}
+
+namespace {
+
+// x = min(x, value), atomically.
+void lower_to(std::atomic<double>& x, double value) {
+  double current = x.load(std::memory_order_relaxed);
+  while (value < current && !x.compare_exchange_weak(current, value, std::memory_order_relaxed)) {
+  }
+}
+
+}  // namespace
+
+double ipc::collision_free_stepsize(const MeshView& mesh, const CandidateLists& candidates, double min_distance,
+                                    double tolerance, long max_iterations, double conservative_rescaling,
+                                    int threads) {
+  constexpr const char* call = "batchccd::ipc::collision_free_stepsize";
+  rules::require_arguments(call, min_distance, 1.0, tolerance, conservative_rescaling);
+  // The lanes cull at the largest separation a candidate may ask for, plus
+  // the distance tolerance: a culled candidate cannot even come within the
+  // band where a per-query call may report a contact it did not prove.
+  Options lanes;
+  lanes.min_distance = min_distance + rules::kLargestRescalingSeparation + tolerance;
+  lanes.threads = threads;
+  lanes.per_candidate_results = false;
+  std::atomic<double> earliest{1.0};
+  filter_mesh(mesh, candidates, {}, lanes, {}, [&](FilteredMesh& lists, Partials&) {
+    const auto decide_survivors = [&](const auto& source, Kind kind, const std::vector<std::size_t>& survivors) {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, survivors.size(), kSolverGrain),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          for (std::size_t k = range.begin(); k < range.end(); ++k) {
+                            double toi = 1;
+                            const double window = earliest.load(std::memory_order_relaxed);
+                            if (rules::decide(kind, simd::query_at(source, survivors[k]), toi, min_distance, window,
+                                              tolerance, max_iterations, conservative_rescaling))
+                              lower_to(earliest, toi);
+                          }
+                        },
+                        tbb::simple_partitioner());
+    };
+    decide_survivors(lists.vertex_face, Kind::vertex_face, lists.survivors[0]);
+    decide_survivors(lists.edge_edge, Kind::edge_edge, lists.survivors[1]);
+    decide_survivors(lists.vertex_edge, Kind::vertex_edge, lists.survivors[2]);
+    decide_survivors(lists.vertex_vertex, Kind::vertex_vertex, lists.survivors[3]);
+  });
+  return earliest.load();
 }
 
 }  // namespace batchccd

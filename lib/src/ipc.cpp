@@ -9,6 +9,7 @@
 
 #include "batchccd/ccd.hpp"
 #include "fronts.hpp"
+#include "ipc_rules.hpp"
 #include "reference/scaled_query.hpp"
 
 namespace batchccd::ipc {
@@ -17,7 +18,6 @@ namespace {
 // ipc-toolkit's constants around Tight Inclusion (ipc/ccd/ccd.cpp,
 // ipc/ccd/tight_inclusion_ccd.cpp).
 constexpr double kInitialDistanceToleranceScale = 0.5;
-constexpr double kLargestRescalingSeparation = 1e-4;
 constexpr double kSmallToi = 1e-6;
 constexpr long kUnlimitedIterations = -1;
 
@@ -81,28 +81,20 @@ void require_lengths(const char* call, Kind kind, std::span<const detail::PointA
 
 }  // namespace
 
-namespace detail {
+namespace rules {
 
-bool ccd(const char* call, Kind kind, std::span<const PointArgument> points, double& toi, double min_distance,
-         double tmax, double tolerance, long max_iterations, double conservative_rescaling) {
-  const std::size_t per_time = static_cast<std::size_t>(points_per_time(kind));
-  assert(points.size() == 2 * per_time);
-  require_lengths(call, kind, points);
+void require_arguments(const char* call, double min_distance, double tmax, double tolerance,
+                       double conservative_rescaling) {
   fronts::require(min_distance >= 0 && std::isfinite(min_distance), call, "min_distance", ">= 0 and finite",
                   min_distance);
   fronts::require(tmax >= 0 && tmax <= 1, call, "tmax", "in [0, 1]", tmax);
   fronts::require(tolerance > 0 && std::isfinite(tolerance), call, "tolerance", "positive and finite", tolerance);
   fronts::require(conservative_rescaling > 0 && conservative_rescaling <= 1, call, "conservative_rescaling",
                   "in (0, 1]", conservative_rescaling);
+}
 
-  std::array<Vec3, 4> at_t0, at_t1;
-  for (std::size_t k = 0; k < per_time; ++k) {
-    at_t0[k] = points[k].point;
-    at_t1[k] = points[per_time + k].point;
-  }
-  const Query query = make_query(kind, std::span<const Vec3>(at_t0.data(), per_time),
-                                 std::span<const Vec3>(at_t1.data(), per_time));
-
+bool decide(Kind kind, const Query& query, double& toi, double min_distance, double tmax, double tolerance,
+            long max_iterations, double conservative_rescaling) {
   if (!reference::all_finite(query)) {  // never step into what cannot be checked
     toi = 0;
     return true;
@@ -118,13 +110,33 @@ bool ccd(const char* call, Kind kind, std::span<const PointArgument> points, dou
   // Part of the gap above min_distance (at most 1e-4) kept free, as there.
   const double effective_separation =
       min_distance +
-      std::min((1 - conservative_rescaling) * (initial_distance - min_distance), kLargestRescalingSeparation);
+      std::min((1 - conservative_rescaling) * (initial_distance - min_distance), rules::kLargestRescalingSeparation);
   QueryResult result = ask(kind, query, effective_separation, distance_tolerance, tmax, max_iterations);
   if (result.hit && result.toi < kSmallToi)
     result = small_toi_retry(kind, query, initial_distance, min_distance, distance_tolerance, tmax,
                              conservative_rescaling);
   if (result.hit) toi = result.toi;
   return result.hit;
+}
+
+}  // namespace rules
+
+namespace detail {
+
+bool ccd(const char* call, Kind kind, std::span<const PointArgument> points, double& toi, double min_distance,
+         double tmax, double tolerance, long max_iterations, double conservative_rescaling) {
+  const std::size_t per_time = static_cast<std::size_t>(points_per_time(kind));
+  assert(points.size() == 2 * per_time);
+  require_lengths(call, kind, points);
+  rules::require_arguments(call, min_distance, tmax, tolerance, conservative_rescaling);
+  std::array<Vec3, 4> at_t0, at_t1;
+  for (std::size_t k = 0; k < per_time; ++k) {
+    at_t0[k] = points[k].point;
+    at_t1[k] = points[per_time + k].point;
+  }
+  const Query query = make_query(kind, std::span<const Vec3>(at_t0.data(), per_time),
+                                 std::span<const Vec3>(at_t1.data(), per_time));
+  return rules::decide(kind, query, toi, min_distance, tmax, tolerance, max_iterations, conservative_rescaling);
 }
 
 }  // namespace detail

@@ -9,6 +9,7 @@
 #include "batchccd/candidates.hpp"  // unique_edges, a mesh candidate as a Query
 #include "batchccd/ccd.hpp"         // vertex_face_ccd, edge_edge_ccd, ...: one query
 #include "batchccd/ipc.hpp"         // one query, called as in ipc-toolkit (min_distance, tmax)
+#include "batchccd/ipc_stepsize.hpp"  // ipc-toolkit's collision-free step over a mesh, one call
 #include "batchccd/io.hpp"          // readers for query files, PLY meshes, scenes
 #include "batchccd/mesh_edges.hpp"  // mesh_ccd with an edges matrix and edge-id candidates
 #include "batchccd/names.hpp"       // the enums' names, both ways

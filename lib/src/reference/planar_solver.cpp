@@ -219,12 +219,15 @@ class PlanarSearch {
     };
     std::array<Interval, 48> stack;  // depth first: at most one pending half a level, 45 levels
     int pending = 0;
-    stack[pending++] = {0, tmax};
+    // The whole step, whatever tmax: the intervals, and so the TOI, do not
+    // depend on it (a shrinking window gives every query the TOI it gets alone).
+    stack[pending++] = {0, 1};
     for (int budget = kIntervalBudget; pending > 0; --budget) {
       if (budget == 0) return {};
       const Interval interval = stack[--pending];
+      if (interval.start > tmax) break;  // the earliest left: nothing later counts
       const Step step = examine(interval.start, interval.end);
-      if (step.outcome) return *step.outcome;
+      if (step.outcome) return within(*step.outcome, tmax);
       if (!step.split) continue;
       if (interval.end - interval.start <= kSmallestWidth) return {};
       const double middle = 0.5 * (interval.start + interval.end);
@@ -268,6 +271,15 @@ class PlanarSearch {
     if (reading.undetermined || reading.requirements > 1) return {std::nullopt, true};
     if (reading.requirements == 0) return {PlanarOutcome{true, true, start, start}, false};
     return single_condition(reading.requirement, q[reading.requirement.index], start, end);
+  }
+
+  // A contact counts when its first time is certainly at most tmax; one
+  // certainly after tmax is a miss; one whose bracket straddles tmax is left
+  // to the exact stage.
+  static PlanarOutcome within(const PlanarOutcome& outcome, double tmax) {
+    if (!outcome.hit || outcome.toi_upper <= tmax) return outcome;
+    if (outcome.toi > tmax) return {true, false, 0, 0};
+    return {};
   }
 
   // The one condition left, f = sign * q >= 0, the others certain over

@@ -33,8 +33,9 @@ struct PlanarOutcome {
 // Contact conditions are the signs of orientations of three moving points,
 // quadratics in t: VF, the vertex on the inner side of all three edges; EE,
 // each segment's ends on opposite sides of the other's line. Time intervals
-// are searched earliest first over [0, tmax]; where a single condition is
-// left to change sign, its root is bracketed to toi_width directly.
+// are searched earliest first over [0, 1], up to tmax (so a TOI does not
+// depend on tmax); where a single condition is left to change sign, its
+// root is bracketed to toi_width directly.
 // A point against a segment is on it where it crosses the segment's line
 // between the ends; two points meet only at a time no sign test certifies,
 // so those contacts are left to the exact stage (certain misses are not).
