@@ -1,13 +1,16 @@
 // The calls shaped like ipc-toolkit's (ipc.hpp): 2D points read as z = 0 and
-// never past their end, 3D-only calls that refuse 2D points, and the rules
+// never past their end, 3D-only calls that refuse 2D points, the rules
 // ipc-toolkit applies around its solver (no motion, the effective
-// separation, the retry of a small toi).
+// separation, the retry of a small toi), and NarrowPhase, also behind the
+// adapter to ipc::NarrowPhaseCCD that ipc.hpp shows.
 #include <array>
 #include <cmath>
 #include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -364,6 +367,372 @@ TEST(IpcRules, SmallToiRetryHasNoIterationLimit) {
                                  min_distance, 1.0, ipc::DEFAULT_CCD_TOLERANCE, /*max_iterations=*/0));
   EXPECT_LE(toi, 0.8 * contact_time);
   EXPECT_GE(toi, 0.8 * (contact_time - 1e-6));
+}
+
+// NarrowPhase: TightInclusionCCD's settings, forwarded to the calls.
+
+// It takes the points each free function takes.
+template <class P, class Q = P>
+concept NarrowPhasePointEdgeTakes = requires(const ipc::NarrowPhase& narrow_phase, const P& p, const Q& q,
+                                             double& toi) { narrow_phase.point_edge_ccd(p, q, q, p, q, q, toi); };
+template <class P, class Q = P>
+concept NarrowPhasePointTriangleTakes =
+    requires(const ipc::NarrowPhase& narrow_phase, const P& p, const Q& q, double& toi) {
+      narrow_phase.point_triangle_ccd(p, q, q, q, p, q, q, q, toi);
+    };
+static_assert(NarrowPhasePointEdgeTakes<Vector2d> && NarrowPhasePointEdgeTakes<Vec3> &&
+              NarrowPhasePointEdgeTakes<RefXd> && !NarrowPhasePointEdgeTakes<Vector2d, Vec3>);
+static_assert(NarrowPhasePointTriangleTakes<Vec3> && NarrowPhasePointTriangleTakes<MapXd> &&
+              !NarrowPhasePointTriangleTakes<Vector2d>);
+// A value to copy into an adapter, with no virtual calls of its own.
+static_assert(!std::is_polymorphic_v<ipc::NarrowPhase> && std::is_trivially_copyable_v<ipc::NarrowPhase>);
+
+TEST(IpcNarrowPhase, DefaultsAreIpcToolkits) {
+  const ipc::NarrowPhase narrow_phase;
+  EXPECT_EQ(narrow_phase.tolerance, 1e-6);
+  EXPECT_EQ(narrow_phase.max_iterations, 10'000'000L);
+  EXPECT_EQ(narrow_phase.conservative_rescaling, 0.8);
+  const ipc::NarrowPhase custom(1e-3, 100, 0.5);
+  EXPECT_EQ(custom.tolerance, 1e-3);
+  EXPECT_EQ(custom.max_iterations, 100);
+  EXPECT_EQ(custom.conservative_rescaling, 0.5);
+}
+
+// Each call of `narrow_phase` refuses its `member`: the call forwards it.
+void expect_each_call_refuses(const ipc::NarrowPhase& narrow_phase, const std::string& member) {
+  const Vector2d p(0.5, 1), e0(0, 0), e1(1, 0);
+  double toi = -1;
+  expect_refused([&] { narrow_phase.point_point_ccd(p, e0, p, e0, toi); }, "batchccd::ipc::point_point_ccd", member);
+  expect_refused([&] { narrow_phase.point_edge_ccd(p, e0, e1, p, e0, e1, toi); }, "batchccd::ipc::point_edge_ccd",
+                 member);
+  expect_refused([&] { narrow_phase.edge_edge_ccd(kA, kB, kA, kC, kA, kB, kA, kC, toi); },
+                 "batchccd::ipc::edge_edge_ccd", member);
+  expect_refused([&] { narrow_phase.point_triangle_ccd(kA, kA, kB, kC, kA, kA, kB, kC, toi); },
+                 "batchccd::ipc::point_triangle_ccd", member);
+  EXPECT_EQ(toi, -1);
+}
+
+// The constructor refuses what the calls would, naming the member; a member
+// changed afterwards is refused by each call.
+TEST(IpcNarrowPhase, RefusesWhatTheCallsRefuse) {
+  const std::string constructor = "batchccd::ipc::NarrowPhase";
+  const double infinity = std::numeric_limits<double>::infinity();
+  for (const double tolerance : {0.0, -1e-6, kNaN, infinity})
+    expect_refused([&] { ipc::NarrowPhase{tolerance}; }, constructor, "tolerance");
+  for (const double rescaling : {0.0, -0.5, 1.5, kNaN})
+    expect_refused([&] { ipc::NarrowPhase(ipc::DEFAULT_CCD_TOLERANCE, ipc::DEFAULT_CCD_MAX_ITERATIONS, rescaling); },
+                   constructor, "conservative_rescaling");
+  try {
+    ipc::NarrowPhase(1e-3, 100, 2.5);
+    ADD_FAILURE() << "accepted conservative_rescaling 2.5";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_STREQ(error.what(), "batchccd::ipc::NarrowPhase: conservative_rescaling must be in (0, 1], got 2.5");
+  }
+  EXPECT_NO_THROW(ipc::NarrowPhase(1e-3, -1, 1.0));  // no iteration limit, no rescaling
+
+  ipc::NarrowPhase narrow_phase;
+  narrow_phase.conservative_rescaling = 0;
+  expect_each_call_refuses(narrow_phase, "conservative_rescaling");
+  narrow_phase.conservative_rescaling = 0.8;
+  narrow_phase.tolerance = -1;
+  expect_each_call_refuses(narrow_phase, "tolerance");
+}
+
+// ipc-toolkit's base class, declared here from its documented interface
+// (batchccd does not depend on ipc-toolkit): four const virtual calls, toi
+// out, min_distance and tmax defaulted. `Planar` is how the point-point and
+// point-edge calls take a point (2D or 3D), `Spatial` how the 3D calls do.
+namespace ipc_stand_in {
+
+using VectorMax3d = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 3, 1>;
+
+template <class Planar, class Spatial>
+class NarrowPhaseCCD {
+ public:
+  using PlanarPoint = Planar;
+  using SpatialPoint = Spatial;
+
+  virtual ~NarrowPhaseCCD() = default;
+
+  virtual bool point_point_ccd(Planar p0_t0, Planar p1_t0, Planar p0_t1, Planar p1_t1, double& toi,
+                               const double min_distance = 0.0, const double tmax = 1.0) const = 0;
+  virtual bool point_edge_ccd(Planar p_t0, Planar e0_t0, Planar e1_t0, Planar p_t1, Planar e0_t1, Planar e1_t1,
+                              double& toi, const double min_distance = 0.0, const double tmax = 1.0) const = 0;
+  virtual bool edge_edge_ccd(Spatial ea0_t0, Spatial ea1_t0, Spatial eb0_t0, Spatial eb1_t0, Spatial ea0_t1,
+                             Spatial ea1_t1, Spatial eb0_t1, Spatial eb1_t1, double& toi,
+                             const double min_distance = 0.0, const double tmax = 1.0) const = 0;
+  virtual bool point_triangle_ccd(Spatial p_t0, Spatial t0_t0, Spatial t1_t0, Spatial t2_t0, Spatial p_t1,
+                                  Spatial t0_t1, Spatial t1_t1, Spatial t2_t1, double& toi,
+                                  const double min_distance = 0.0, const double tmax = 1.0) const = 0;
+};
+
+// 1.3 takes const references to the vectors; 1.4 on, const Eigen::Refs.
+using Version13 = NarrowPhaseCCD<const VectorMax3d&, const Eigen::Vector3d&>;
+using Version14 = NarrowPhaseCCD<const Eigen::Ref<const VectorMax3d>&, const Eigen::Ref<const Eigen::Vector3d>&>;
+
+}  // namespace ipc_stand_in
+
+using ipc_stand_in::VectorMax3d;
+
+// The adapter ipc.hpp shows, with the base's parameter types.
+template <class Base>
+class BatchccdCCD : public Base {
+  using Planar = typename Base::PlanarPoint;
+  using Spatial = typename Base::SpatialPoint;
+
+ public:
+  explicit BatchccdCCD(const ipc::NarrowPhase& settings = ipc::NarrowPhase()) : narrow_phase(settings) {}
+
+  bool point_point_ccd(Planar p0_t0, Planar p1_t0, Planar p0_t1, Planar p1_t1, double& toi,
+                       const double min_distance = 0.0, const double tmax = 1.0) const override {
+    return narrow_phase.point_point_ccd(p0_t0, p1_t0, p0_t1, p1_t1, toi, min_distance, tmax);
+  }
+  bool point_edge_ccd(Planar p_t0, Planar e0_t0, Planar e1_t0, Planar p_t1, Planar e0_t1, Planar e1_t1, double& toi,
+                      const double min_distance = 0.0, const double tmax = 1.0) const override {
+    return narrow_phase.point_edge_ccd(p_t0, e0_t0, e1_t0, p_t1, e0_t1, e1_t1, toi, min_distance, tmax);
+  }
+  bool edge_edge_ccd(Spatial ea0_t0, Spatial ea1_t0, Spatial eb0_t0, Spatial eb1_t0, Spatial ea0_t1, Spatial ea1_t1,
+                     Spatial eb0_t1, Spatial eb1_t1, double& toi, const double min_distance = 0.0,
+                     const double tmax = 1.0) const override {
+    return narrow_phase.edge_edge_ccd(ea0_t0, ea1_t0, eb0_t0, eb1_t0, ea0_t1, ea1_t1, eb0_t1, eb1_t1, toi,
+                                      min_distance, tmax);
+  }
+  bool point_triangle_ccd(Spatial p_t0, Spatial t0_t0, Spatial t1_t0, Spatial t2_t0, Spatial p_t1, Spatial t0_t1,
+                          Spatial t1_t1, Spatial t2_t1, double& toi, const double min_distance = 0.0,
+                          const double tmax = 1.0) const override {
+    return narrow_phase.point_triangle_ccd(p_t0, t0_t0, t1_t0, t2_t0, p_t1, t0_t1, t1_t1, t2_t1, toi, min_distance,
+                                           tmax);
+  }
+
+  ipc::NarrowPhase narrow_phase;
+};
+
+// One question, the points as ipc-toolkit hands them over.
+struct NarrowPhaseCase {
+  const char* name;
+  batchccd::Kind kind;
+  std::vector<VectorMax3d> points;  // t0 then t1, in the call's order
+  double min_distance = 0;
+  double tmax = 1;
+  bool hit = true;              // what every setting answers (misses: given iterations)
+  double contact_time = 1;      // a hit's toi is no later
+  const char* shows = nullptr;  // the member whose change changes the answer
+};
+
+VectorMax3d at(double x, double y) { return Vector2d(x, y); }
+VectorMax3d at(double x, double y, double z) { return Vec3(x, y, z); }
+
+// For each kind: hits, misses, 2D points for the point calls, min_distance,
+// tmax, and a case where each member of NarrowPhase changes the answer (the
+// "close" ones start 2^-14 apart, where the rescaling sets the separation;
+// the others were found on a grid of quarters). No case of point_point_ccd
+// depends on the tolerance (none found); RefusesWhatTheCallsRefuse shows
+// that one forwarded.
+std::vector<NarrowPhaseCase> narrow_phase_cases() {
+  using batchccd::Kind;
+  const VectorMax3d o = at(0, 0, 0), b = at(1, 0, 0), c = at(0, 1, 0), o2 = at(0, 0), b2 = at(1, 0);
+  const double close = 0x1p-14;
+  return {
+      {.name = "point-point 3D", .kind = Kind::vertex_vertex, .points = {at(0, 0, 1), o, at(0, 0, -1), o},
+       .contact_time = 0.5},
+      {.name = "point-point 2D", .kind = Kind::vertex_vertex, .points = {at(0, 1), o2, at(0, -1), o2},
+       .contact_time = 0.5},
+      {.name = "point-point 2D miss", .kind = Kind::vertex_vertex, .points = {at(1, 1), o2, at(1, -1), o2},
+       .min_distance = 0.5, .hit = false},
+      {.name = "point-point close", .kind = Kind::vertex_vertex, .points = {at(0, 0, close), o, at(0, 0, -close), o},
+       .contact_time = 0.5, .shows = "conservative_rescaling"},
+      {.name = "point-point iterations", .kind = Kind::vertex_vertex,
+       .points = {at(-0.25, 0, 0), at(-0.75, -0.25, -0.25), at(-0.75, -0.25, -0.5), at(-0.75, -0.25, -0.25)},
+       .min_distance = 0.25, .shows = "max_iterations"},
+      {.name = "point-edge 2D", .kind = Kind::vertex_edge, .points = {at(0.5, 1), o2, b2, at(0.5, -1), o2, b2},
+       .contact_time = 0.5},
+      {.name = "point-edge 2D with min_distance", .kind = Kind::vertex_edge,
+       .points = {at(0.5, 1), o2, b2, at(0.5, -1), o2, b2}, .min_distance = 0.25, .contact_time = 0.375},
+      {.name = "point-edge 2D miss", .kind = Kind::vertex_edge, .points = {at(2, 1), o2, b2, at(2, -1), o2, b2},
+       .min_distance = 0.5, .hit = false},
+      {.name = "point-edge 2D close", .kind = Kind::vertex_edge,
+       .points = {at(0.5, close), o2, b2, at(0.5, -close), o2, b2}, .contact_time = 0.5,
+       .shows = "conservative_rescaling"},
+      {.name = "point-edge 2D iterations", .kind = Kind::vertex_edge,
+       .points = {at(0, 0), at(-0.5, 1), at(-0.75, 0.25), at(-0.75, 1), at(-0.5, 1), at(-0.75, 0.25)},
+       .shows = "max_iterations"},
+      {.name = "point-edge 2D tolerance", .kind = Kind::vertex_edge,
+       .points = {at(0.25, -0.5), at(0.75, 0.75), at(0.5, 0), at(0.25, 0.5), at(0.75, 0.75), at(0.5, 0)},
+       .min_distance = 0.25, .shows = "tolerance"},
+      {.name = "point-edge 3D", .kind = Kind::vertex_edge, .points = {at(0.5, 0, 1), o, b, at(0.5, 0, -1), o, b},
+       .contact_time = 0.5},
+      {.name = "point-edge 3D tolerance", .kind = Kind::vertex_edge,
+       .points = {at(0, 0, -0.25), at(0.25, 1, -0.75), at(-0.5, 0.5, -0.5), at(-0.75, 0.75, -0.25),
+                  at(0.25, 1, -0.75), at(-0.5, 0.5, -0.5)},
+       .min_distance = 0.25, .shows = "tolerance"},
+      {.name = "edge-edge", .kind = Kind::edge_edge,
+       .points = {at(0, -1, 1), at(0, 1, 1), at(-1, 0, 0), b, at(0, -1, -1), at(0, 1, -1), at(-1, 0, 0), b},
+       .contact_time = 0.5},
+      {.name = "edge-edge with min_distance", .kind = Kind::edge_edge,
+       .points = {at(0, -1, 1), at(0, 1, 1), at(-1, 0, 0), b, at(0, -1, -1), at(0, 1, -1), at(-1, 0, 0), b},
+       .min_distance = 0.25, .contact_time = 0.375},
+      {.name = "edge-edge miss", .kind = Kind::edge_edge,
+       .points = {at(3, -1, 1), at(3, 1, 1), at(-1, 0, 0), b, at(3, -1, -1), at(3, 1, -1), at(-1, 0, 0), b},
+       .hit = false},
+      {.name = "edge-edge close", .kind = Kind::edge_edge,
+       .points = {at(0, -1, close), at(0, 1, close), at(-1, 0, 0), b, at(0, -1, -close), at(0, 1, -close),
+                  at(-1, 0, 0), b},
+       .contact_time = 0.5, .shows = "conservative_rescaling"},
+      {.name = "edge-edge after tmax", .kind = Kind::edge_edge,
+       .points = {at(0, -1, 1), at(0, 1, 1), at(-1, 0, 0), b, at(0, -1, -1), at(0, 1, -1), at(-1, 0, 0), b},
+       .tmax = 0.25, .hit = false, .shows = "max_iterations"},
+      {.name = "edge-edge tolerance", .kind = Kind::edge_edge,
+       .points = {at(0.25, 1, 0.25), at(0, -0.5, -0.25), at(0.5, -0.25, -0.25), at(1, -1, 0), at(0.75, 1.5, 0.5),
+                  at(0.5, 0, 0), at(0.5, -0.25, -0.25), at(1, -1, 0)},
+       .min_distance = 0.25, .shows = "tolerance"},
+      {.name = "point-triangle", .kind = Kind::vertex_face,
+       .points = {at(0.25, 0.25, 1), o, b, c, at(0.25, 0.25, -1), o, b, c}, .contact_time = 0.5},
+      {.name = "point-triangle miss", .kind = Kind::vertex_face,
+       .points = {at(2, 2, 1), o, b, c, at(2, 2, -1), o, b, c}, .hit = false},
+      {.name = "point-triangle static, touching", .kind = Kind::vertex_face,
+       .points = {at(0.25, 0.25, 0), o, b, c, at(0.25, 0.25, 0), o, b, c}, .contact_time = 0},
+      {.name = "point-triangle with min_distance", .kind = Kind::vertex_face,
+       .points = {at(0.25, 0.25, 1), o, b, c, at(0.25, 0.25, -1), o, b, c}, .min_distance = 0.25,
+       .contact_time = 0.375},
+      {.name = "point-triangle after tmax", .kind = Kind::vertex_face,
+       .points = {at(0.25, 0.25, 1), o, b, c, at(0.25, 0.25, -1), o, b, c}, .tmax = 0.25, .hit = false,
+       .shows = "max_iterations"},
+      {.name = "point-triangle before tmax", .kind = Kind::vertex_face,
+       .points = {at(0.25, 0.25, 1), o, b, c, at(0.25, 0.25, -1), o, b, c}, .tmax = 0.75, .contact_time = 0.5},
+      {.name = "point-triangle close", .kind = Kind::vertex_face,
+       .points = {at(0.25, 0.25, close), o, b, c, at(0.25, 0.25, -close), o, b, c}, .contact_time = 0.5,
+       .shows = "conservative_rescaling"},
+      {.name = "point-triangle tolerance", .kind = Kind::vertex_face,
+       .points = {at(0.25, -0.25, 0), at(-0.25, 0, 0), at(1, 0.75, 0.25), at(0.5, 0.25, -0.25), at(-0.5, -0.25, 0),
+                  at(-0.25, 0, 0), at(1, 0.75, 0.25), at(0.5, 0.25, -0.25)},
+       .min_distance = 0.25, .shows = "tolerance"},
+  };
+}
+
+struct NarrowPhaseAnswer {
+  bool hit;
+  double toi;
+  bool operator==(const NarrowPhaseAnswer&) const = default;
+};
+
+constexpr double kUntouched = -1;
+
+template <class Base>
+NarrowPhaseAnswer ask_through(const Base& ccd, const NarrowPhaseCase& q) {
+  using batchccd::Kind;
+  const std::vector<VectorMax3d>& x = q.points;
+  std::array<Eigen::Vector3d, 8> s;  // the 3D calls' points
+  if (q.kind == Kind::edge_edge || q.kind == Kind::vertex_face)
+    for (int k = 0; k < 8; ++k) s[k] = x[k];
+  double toi = kUntouched;
+  bool hit = false;
+  switch (q.kind) {
+    case Kind::vertex_vertex:
+      hit = ccd.point_point_ccd(x[0], x[1], x[2], x[3], toi, q.min_distance, q.tmax);
+      break;
+    case Kind::vertex_edge:
+      hit = ccd.point_edge_ccd(x[0], x[1], x[2], x[3], x[4], x[5], toi, q.min_distance, q.tmax);
+      break;
+    case Kind::edge_edge:
+      hit = ccd.edge_edge_ccd(s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], toi, q.min_distance, q.tmax);
+      break;
+    case Kind::vertex_face:
+      hit = ccd.point_triangle_ccd(s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], toi, q.min_distance, q.tmax);
+      break;
+  }
+  return {hit, toi};
+}
+
+// The free functions given the settings: what the class must answer.
+NarrowPhaseAnswer ask_free_functions(const ipc::NarrowPhase& settings, const NarrowPhaseCase& q) {
+  using batchccd::Kind;
+  const std::vector<VectorMax3d>& x = q.points;
+  const double tolerance = settings.tolerance, rescaling = settings.conservative_rescaling;
+  const long iterations = settings.max_iterations;
+  double toi = kUntouched;
+  bool hit = false;
+  switch (q.kind) {
+    case Kind::vertex_vertex:
+      hit = ipc::point_point_ccd(x[0], x[1], x[2], x[3], toi, q.min_distance, q.tmax, tolerance, iterations,
+                                 rescaling);
+      break;
+    case Kind::vertex_edge:
+      hit = ipc::point_edge_ccd(x[0], x[1], x[2], x[3], x[4], x[5], toi, q.min_distance, q.tmax, tolerance,
+                                iterations, rescaling);
+      break;
+    case Kind::edge_edge:
+      hit = ipc::edge_edge_ccd(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], toi, q.min_distance, q.tmax,
+                               tolerance, iterations, rescaling);
+      break;
+    case Kind::vertex_face:
+      hit = ipc::point_triangle_ccd(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], toi, q.min_distance, q.tmax,
+                                    tolerance, iterations, rescaling);
+      break;
+  }
+  return {hit, toi};
+}
+
+struct NamedSettings {
+  const char* changed;  // the member that differs from the defaults
+  ipc::NarrowPhase settings;
+};
+
+// Through a `const NarrowPhaseCCD&`, the adapter answers as the free
+// functions given its settings: the defaults, and each member changed alone,
+// which changes the answers of the cases that show it (so a call that does
+// not forward a member fails).
+template <class Base>
+void expect_adapter_answers_as_free_functions() {
+  const std::vector<NarrowPhaseCase> cases = narrow_phase_cases();
+  const ipc::NarrowPhase defaults;
+  const NamedSettings variants[] = {
+      {"none", defaults},
+      {"tolerance", ipc::NarrowPhase(0.05)},
+      {"max_iterations", ipc::NarrowPhase(ipc::DEFAULT_CCD_TOLERANCE, 0)},
+      {"conservative_rescaling",
+       ipc::NarrowPhase(ipc::DEFAULT_CCD_TOLERANCE, ipc::DEFAULT_CCD_MAX_ITERATIONS, 0.5)},
+  };
+  for (const NamedSettings& variant : variants) {
+    SCOPED_TRACE(std::string("changed: ") + variant.changed);
+    const BatchccdCCD<Base> adapter(variant.settings);
+    const Base& ccd = adapter;
+    for (const NarrowPhaseCase& q : cases) {
+      SCOPED_TRACE(q.name);
+      const NarrowPhaseAnswer answer = ask_through(ccd, q), expected = ask_free_functions(variant.settings, q);
+      EXPECT_EQ(answer.hit, expected.hit);
+      EXPECT_EQ(answer.toi, expected.toi);
+      // A search out of iterations reports a contact: misses hold with a budget.
+      if (q.hit || variant.settings.max_iterations != 0) {
+        EXPECT_EQ(answer.hit, q.hit);
+      }
+      if (answer.hit) {
+        EXPECT_GE(answer.toi, 0.0);
+        EXPECT_LE(answer.toi, q.contact_time);
+      } else {
+        EXPECT_EQ(answer.toi, kUntouched);
+      }
+      if (q.shows != nullptr && std::string(q.shows) == variant.changed) {
+        EXPECT_FALSE(answer == ask_free_functions(defaults, q)) << "the change shows nowhere else";
+      }
+    }
+  }
+
+  // ipc-toolkit's defaults for min_distance and tmax, through the base.
+  const BatchccdCCD<Base> adapter;
+  const Base& ccd = adapter;
+  const Eigen::Vector3d p_t0(0.25, 0.25, 1), p_t1(0.25, 0.25, -1);
+  double toi = kUntouched, expected_toi = kUntouched;
+  EXPECT_TRUE(ccd.point_triangle_ccd(p_t0, kA, kB, kC, p_t1, kA, kB, kC, toi));
+  EXPECT_TRUE(ipc::point_triangle_ccd(p_t0, kA, kB, kC, p_t1, kA, kB, kC, expected_toi));
+  EXPECT_EQ(toi, expected_toi);
+}
+
+TEST(IpcNarrowPhase, AdapterToIpcToolkit13AnswersAsTheFreeFunctions) {
+  expect_adapter_answers_as_free_functions<ipc_stand_in::Version13>();
+}
+
+TEST(IpcNarrowPhase, AdapterToIpcToolkit14AnswersAsTheFreeFunctions) {
+  expect_adapter_answers_as_free_functions<ipc_stand_in::Version14>();
 }
 
 }  // namespace

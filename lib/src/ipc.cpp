@@ -79,7 +79,20 @@ void require_lengths(const char* call, Kind kind, std::span<const detail::PointA
                     static_cast<double>(argument.length));
 }
 
+// The settings NarrowPhase holds, checked by its constructor and by every
+// call (its members may change in between).
+void require_settings(const char* call, double tolerance, double conservative_rescaling) {
+  fronts::require(tolerance > 0 && std::isfinite(tolerance), call, "tolerance", "positive and finite", tolerance);
+  fronts::require(conservative_rescaling > 0 && conservative_rescaling <= 1, call, "conservative_rescaling",
+                  "in (0, 1]", conservative_rescaling);
+}
+
 }  // namespace
+
+NarrowPhase::NarrowPhase(double tolerance_, long max_iterations_, double conservative_rescaling_)
+    : tolerance(tolerance_), max_iterations(max_iterations_), conservative_rescaling(conservative_rescaling_) {
+  require_settings("batchccd::ipc::NarrowPhase", tolerance, conservative_rescaling);
+}
 
 namespace rules {
 
@@ -88,9 +101,7 @@ void require_arguments(const char* call, double min_distance, double tmax, doubl
   fronts::require(min_distance >= 0 && std::isfinite(min_distance), call, "min_distance", ">= 0 and finite",
                   min_distance);
   fronts::require(tmax >= 0 && tmax <= 1, call, "tmax", "in [0, 1]", tmax);
-  fronts::require(tolerance > 0 && std::isfinite(tolerance), call, "tolerance", "positive and finite", tolerance);
-  fronts::require(conservative_rescaling > 0 && conservative_rescaling <= 1, call, "conservative_rescaling",
-                  "in (0, 1]", conservative_rescaling);
+  require_settings(call, tolerance, conservative_rescaling);
 }
 
 bool decide(Kind kind, const Query& query, double& toi, double min_distance, double tmax, double tolerance,

@@ -6,6 +6,8 @@ import numpy as np
 import numpy.typing as npt
 from typing_extensions import Unpack
 
+from . import ipc as ipc
+
 __version__: str
 STATUS_OK: int
 STATUS_INVALID_INPUT: int

@@ -589,6 +589,213 @@ Options (keyword-only; defaults in default_options()):
 
 std::string doc(const char* text) { return std::string(text) + kOptionsDoc; }
 
+// ---------------------------------------------------------------- ipc
+
+// batchccd.ipc: ipc.hpp's calls and NarrowPhase under the names, arguments
+// and defaults of ipctk (ipc-toolkit's Python module), answering as it does
+// with a tuple (hit, toi).
+
+// The points of one call as the library's vectors: 1-D arrays, float64 read
+// in place, other numbers copied once. Their lengths are the library's to
+// check: its message names the call and the argument.
+template <std::size_t N>
+class IpcPoints {
+ public:
+  IpcPoints(const std::array<py::object, N>& objects, const std::array<const char*, N>& names) {
+    for (std::size_t i = 0; i < N; ++i) arrays_[i] = double_vector(objects[i], names[i]);
+  }
+  Eigen::Map<const Eigen::VectorXd> operator[](std::size_t i) const {
+    return {static_cast<const double*>(arrays_[i].data()), static_cast<Eigen::Index>(arrays_[i].size())};
+  }
+
+ private:
+  std::array<py::array, N> arrays_;
+};
+
+// (hit, toi) from call(toi). Without a hit toi is inf, as ipctk's Tight
+// Inclusion calls say (its ccd calls leave it unset).
+template <class Call>
+py::tuple ipc_answer(const Call& call) {
+  double toi = std::numeric_limits<double>::infinity();
+  bool hit = false;
+  {
+    py::gil_scoped_release release;
+    hit = call(toi);
+  }
+  return py::make_tuple(hit, toi);
+}
+
+constexpr std::array<const char*, 4> kPointPointNames = {"p0_t0", "p1_t0", "p0_t1", "p1_t1"};
+constexpr std::array<const char*, 6> kPointEdgeNames = {"p_t0", "e0_t0", "e1_t0", "p_t1", "e0_t1", "e1_t1"};
+constexpr std::array<const char*, 8> kEdgeEdgeNames = {"ea0_t0", "ea1_t0", "eb0_t0", "eb1_t0",
+                                                       "ea0_t1", "ea1_t1", "eb0_t1", "eb1_t1"};
+constexpr std::array<const char*, 8> kPointTriangleNames = {"p_t0", "t0_t0", "t1_t0", "t2_t0",
+                                                            "p_t1", "t0_t1", "t1_t1", "t2_t1"};
+
+constexpr const char* kIpcCallsDoc = R"(
+Points are 1-D arrays (or sequences) of numbers: 2 or 3 coordinates for
+point_point_ccd and point_edge_ccd (all of one length; 2D is read as
+z = 0), 3 for edge_edge_ccd and point_triangle_ccd. Returns (hit, toi):
+hit when the primitives come within min_distance in [0, tmax], toi then a
+lower bound of that time (0 when they start within it); toi is inf without
+a hit. ValueError with the library's message for points of another length
+or a bad min_distance, tmax, tolerance or conservative_rescaling.
+)";
+
+std::string ipc_doc(const char* text) { return std::string(text) + kIpcCallsDoc; }
+
+void define_ipc(py::module_ module) {
+  module.attr("DEFAULT_CCD_TOLERANCE") = ipc::DEFAULT_CCD_TOLERANCE;
+  module.attr("DEFAULT_CCD_MAX_ITERATIONS") = ipc::DEFAULT_CCD_MAX_ITERATIONS;
+  module.attr("DEFAULT_CCD_CONSERVATIVE_RESCALING") = ipc::DEFAULT_CCD_CONSERVATIVE_RESCALING;
+
+  module.def(
+      "point_point_ccd",
+      [](py::object p0_t0, py::object p1_t0, py::object p0_t1, py::object p1_t1, double min_distance, double tmax,
+         double tolerance, long max_iterations, double conservative_rescaling) {
+        const IpcPoints<4> x({p0_t0, p1_t0, p0_t1, p1_t1}, kPointPointNames);
+        return ipc_answer([&](double& toi) {
+          return ipc::point_point_ccd(x[0], x[1], x[2], x[3], toi, min_distance, tmax, tolerance, max_iterations,
+                                      conservative_rescaling);
+        });
+      },
+      "p0_t0"_a, "p1_t0"_a, "p0_t1"_a, "p1_t1"_a, "min_distance"_a = 0.0, "tmax"_a = 1.0,
+      "tolerance"_a = ipc::DEFAULT_CCD_TOLERANCE, "max_iterations"_a = ipc::DEFAULT_CCD_MAX_ITERATIONS,
+      "conservative_rescaling"_a = ipc::DEFAULT_CCD_CONSERVATIVE_RESCALING,
+      ipc_doc(R"(point_point_ccd(p0_t0, p1_t0, p0_t1, p1_t1, min_distance=0.0, tmax=1.0, tolerance=1e-6, max_iterations=10000000, conservative_rescaling=0.8) -> (bool, float)
+
+Point p0 against point p1, as ipctk.point_point_ccd (ipc.hpp).
+)").c_str());
+  module.def(
+      "point_edge_ccd",
+      [](py::object p_t0, py::object e0_t0, py::object e1_t0, py::object p_t1, py::object e0_t1, py::object e1_t1,
+         double min_distance, double tmax, double tolerance, long max_iterations, double conservative_rescaling) {
+        const IpcPoints<6> x({p_t0, e0_t0, e1_t0, p_t1, e0_t1, e1_t1}, kPointEdgeNames);
+        return ipc_answer([&](double& toi) {
+          return ipc::point_edge_ccd(x[0], x[1], x[2], x[3], x[4], x[5], toi, min_distance, tmax, tolerance,
+                                     max_iterations, conservative_rescaling);
+        });
+      },
+      "p_t0"_a, "e0_t0"_a, "e1_t0"_a, "p_t1"_a, "e0_t1"_a, "e1_t1"_a, "min_distance"_a = 0.0, "tmax"_a = 1.0,
+      "tolerance"_a = ipc::DEFAULT_CCD_TOLERANCE, "max_iterations"_a = ipc::DEFAULT_CCD_MAX_ITERATIONS,
+      "conservative_rescaling"_a = ipc::DEFAULT_CCD_CONSERVATIVE_RESCALING,
+      ipc_doc(R"(point_edge_ccd(p_t0, e0_t0, e1_t0, p_t1, e0_t1, e1_t1, min_distance=0.0, tmax=1.0, tolerance=1e-6, max_iterations=10000000, conservative_rescaling=0.8) -> (bool, float)
+
+Point p against edge (e0, e1), as ipctk.point_edge_ccd (ipc.hpp).
+)").c_str());
+  module.def(
+      "edge_edge_ccd",
+      [](py::object ea0_t0, py::object ea1_t0, py::object eb0_t0, py::object eb1_t0, py::object ea0_t1,
+         py::object ea1_t1, py::object eb0_t1, py::object eb1_t1, double min_distance, double tmax, double tolerance,
+         long max_iterations, double conservative_rescaling) {
+        const IpcPoints<8> x({ea0_t0, ea1_t0, eb0_t0, eb1_t0, ea0_t1, ea1_t1, eb0_t1, eb1_t1}, kEdgeEdgeNames);
+        return ipc_answer([&](double& toi) {
+          return ipc::edge_edge_ccd(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], toi, min_distance, tmax,
+                                    tolerance, max_iterations, conservative_rescaling);
+        });
+      },
+      "ea0_t0"_a, "ea1_t0"_a, "eb0_t0"_a, "eb1_t0"_a, "ea0_t1"_a, "ea1_t1"_a, "eb0_t1"_a, "eb1_t1"_a,
+      "min_distance"_a = 0.0, "tmax"_a = 1.0, "tolerance"_a = ipc::DEFAULT_CCD_TOLERANCE,
+      "max_iterations"_a = ipc::DEFAULT_CCD_MAX_ITERATIONS,
+      "conservative_rescaling"_a = ipc::DEFAULT_CCD_CONSERVATIVE_RESCALING,
+      ipc_doc(R"(edge_edge_ccd(ea0_t0, ea1_t0, eb0_t0, eb1_t0, ea0_t1, ea1_t1, eb0_t1, eb1_t1, min_distance=0.0, tmax=1.0, tolerance=1e-6, max_iterations=10000000, conservative_rescaling=0.8) -> (bool, float)
+
+Edge (ea0, ea1) against edge (eb0, eb1), as ipctk.edge_edge_ccd (ipc.hpp).
+)").c_str());
+  module.def(
+      "point_triangle_ccd",
+      [](py::object p_t0, py::object t0_t0, py::object t1_t0, py::object t2_t0, py::object p_t1, py::object t0_t1,
+         py::object t1_t1, py::object t2_t1, double min_distance, double tmax, double tolerance, long max_iterations,
+         double conservative_rescaling) {
+        const IpcPoints<8> x({p_t0, t0_t0, t1_t0, t2_t0, p_t1, t0_t1, t1_t1, t2_t1}, kPointTriangleNames);
+        return ipc_answer([&](double& toi) {
+          return ipc::point_triangle_ccd(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], toi, min_distance, tmax,
+                                         tolerance, max_iterations, conservative_rescaling);
+        });
+      },
+      "p_t0"_a, "t0_t0"_a, "t1_t0"_a, "t2_t0"_a, "p_t1"_a, "t0_t1"_a, "t1_t1"_a, "t2_t1"_a, "min_distance"_a = 0.0,
+      "tmax"_a = 1.0, "tolerance"_a = ipc::DEFAULT_CCD_TOLERANCE, "max_iterations"_a = ipc::DEFAULT_CCD_MAX_ITERATIONS,
+      "conservative_rescaling"_a = ipc::DEFAULT_CCD_CONSERVATIVE_RESCALING,
+      ipc_doc(R"(point_triangle_ccd(p_t0, t0_t0, t1_t0, t2_t0, p_t1, t0_t1, t1_t1, t2_t1, min_distance=0.0, tmax=1.0, tolerance=1e-6, max_iterations=10000000, conservative_rescaling=0.8) -> (bool, float)
+
+Point p against triangle (t0, t1, t2), as ipctk.point_triangle_ccd (ipc.hpp).
+)").c_str());
+
+  // The class's methods forward to ipc::NarrowPhase's, which forward its members.
+  py::class_<ipc::NarrowPhase>(module, "NarrowPhase",
+                               R"(NarrowPhase(tolerance=1e-6, max_iterations=10000000, conservative_rescaling=0.8)
+
+ipctk.TightInclusionCCD's settings and calls (ipc.hpp's NarrowPhase): the
+four calls take the points, min_distance=0.0 and tmax=1.0, and answer as
+the functions of this module given the object's attributes. ValueError for
+a tolerance that is not positive and finite or a conservative_rescaling
+outside (0, 1]; max_iterations < 0: no limit.)")
+      .def(py::init<double, long, double>(), "tolerance"_a = ipc::DEFAULT_CCD_TOLERANCE,
+           "max_iterations"_a = ipc::DEFAULT_CCD_MAX_ITERATIONS,
+           "conservative_rescaling"_a = ipc::DEFAULT_CCD_CONSERVATIVE_RESCALING)
+      .def_readwrite("tolerance", &ipc::NarrowPhase::tolerance,
+                     "The distance tolerance, in the points' length unit (checked by each call).")
+      .def_readwrite("max_iterations", &ipc::NarrowPhase::max_iterations,
+                     "The solver's budget; a query that exhausts it counts as a contact. < 0: none.")
+      .def_readwrite("conservative_rescaling", &ipc::NarrowPhase::conservative_rescaling,
+                     "The part of the gap a step may close, in (0, 1] (checked by each call).")
+      .def(
+          "point_point_ccd",
+          [](const ipc::NarrowPhase& self, py::object p0_t0, py::object p1_t0, py::object p0_t1, py::object p1_t1,
+             double min_distance, double tmax) {
+            const IpcPoints<4> x({p0_t0, p1_t0, p0_t1, p1_t1}, kPointPointNames);
+            return ipc_answer(
+                [&](double& toi) { return self.point_point_ccd(x[0], x[1], x[2], x[3], toi, min_distance, tmax); });
+          },
+          "p0_t0"_a, "p1_t0"_a, "p0_t1"_a, "p1_t1"_a, "min_distance"_a = 0.0, "tmax"_a = 1.0,
+          "point_point_ccd(p0_t0, p1_t0, p0_t1, p1_t1, min_distance=0.0, tmax=1.0) -> (bool, float)")
+      .def(
+          "point_edge_ccd",
+          [](const ipc::NarrowPhase& self, py::object p_t0, py::object e0_t0, py::object e1_t0, py::object p_t1,
+             py::object e0_t1, py::object e1_t1, double min_distance, double tmax) {
+            const IpcPoints<6> x({p_t0, e0_t0, e1_t0, p_t1, e0_t1, e1_t1}, kPointEdgeNames);
+            return ipc_answer([&](double& toi) {
+              return self.point_edge_ccd(x[0], x[1], x[2], x[3], x[4], x[5], toi, min_distance, tmax);
+            });
+          },
+          "p_t0"_a, "e0_t0"_a, "e1_t0"_a, "p_t1"_a, "e0_t1"_a, "e1_t1"_a, "min_distance"_a = 0.0, "tmax"_a = 1.0,
+          "point_edge_ccd(p_t0, e0_t0, e1_t0, p_t1, e0_t1, e1_t1, min_distance=0.0, tmax=1.0) -> (bool, float)")
+      .def(
+          "edge_edge_ccd",
+          [](const ipc::NarrowPhase& self, py::object ea0_t0, py::object ea1_t0, py::object eb0_t0, py::object eb1_t0,
+             py::object ea0_t1, py::object ea1_t1, py::object eb0_t1, py::object eb1_t1, double min_distance,
+             double tmax) {
+            const IpcPoints<8> x({ea0_t0, ea1_t0, eb0_t0, eb1_t0, ea0_t1, ea1_t1, eb0_t1, eb1_t1}, kEdgeEdgeNames);
+            return ipc_answer([&](double& toi) {
+              return self.edge_edge_ccd(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], toi, min_distance, tmax);
+            });
+          },
+          "ea0_t0"_a, "ea1_t0"_a, "eb0_t0"_a, "eb1_t0"_a, "ea0_t1"_a, "ea1_t1"_a, "eb0_t1"_a, "eb1_t1"_a,
+          "min_distance"_a = 0.0, "tmax"_a = 1.0,
+          "edge_edge_ccd(ea0_t0, ea1_t0, eb0_t0, eb1_t0, ea0_t1, ea1_t1, eb0_t1, eb1_t1, min_distance=0.0, "
+          "tmax=1.0) -> (bool, float)")
+      .def(
+          "point_triangle_ccd",
+          [](const ipc::NarrowPhase& self, py::object p_t0, py::object t0_t0, py::object t1_t0, py::object t2_t0,
+             py::object p_t1, py::object t0_t1, py::object t1_t1, py::object t2_t1, double min_distance,
+             double tmax) {
+            const IpcPoints<8> x({p_t0, t0_t0, t1_t0, t2_t0, p_t1, t0_t1, t1_t1, t2_t1}, kPointTriangleNames);
+            return ipc_answer([&](double& toi) {
+              return self.point_triangle_ccd(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], toi, min_distance,
+                                             tmax);
+            });
+          },
+          "p_t0"_a, "t0_t0"_a, "t1_t0"_a, "t2_t0"_a, "p_t1"_a, "t0_t1"_a, "t1_t1"_a, "t2_t1"_a,
+          "min_distance"_a = 0.0, "tmax"_a = 1.0,
+          "point_triangle_ccd(p_t0, t0_t0, t1_t0, t2_t0, p_t1, t0_t1, t1_t1, t2_t1, min_distance=0.0, tmax=1.0) "
+          "-> (bool, float)")
+      .def("__repr__", [](const ipc::NarrowPhase& self) {
+        return "NarrowPhase(tolerance=" + py::repr(py::float_(self.tolerance)).cast<std::string>() +
+               ", max_iterations=" + std::to_string(self.max_iterations) + ", conservative_rescaling=" +
+               py::repr(py::float_(self.conservative_rescaling)).cast<std::string>() + ")";
+      });
+}
+
 }  // namespace
 }  // namespace batchccd::python
 
@@ -864,4 +1071,6 @@ file, line and problem.)");
       py::arg("isa") = "auto",
       "resolve_isa(isa='auto') -> str\n\nThe instruction set a batch call with `isa` runs; ValueError when "
       "a forced one is not available.");
+
+  define_ipc(m.def_submodule("ipc", "ipc-toolkit's CCD calls, as ipctk names and answers them (ipc.hpp)."));
 }

@@ -62,6 +62,10 @@
 // finite, tmax is not in [0, 1], tolerance is not positive and finite or
 // conservative_rescaling is not in (0, 1]. A NaN or infinite coordinate
 // returns true with toi = 0.
+//
+// NarrowPhase (at the end) holds tolerance, max_iterations and
+// conservative_rescaling as TightInclusionCCD does, for code that passes a
+// narrow phase around (ipc-toolkit's compute_collision_free_stepsize).
 #include <concepts>
 #include <initializer_list>
 #include <span>
@@ -188,5 +192,103 @@ bool point_triangle_ccd(const P0& p_t0, const P1& t0_t0, const P2& t1_t0, const 
   return detail::ccd("batchccd::ipc::point_triangle_ccd", Kind::vertex_face, points, toi, min_distance, tmax,
                      tolerance, max_iterations, conservative_rescaling);
 }
+
+// ipc-toolkit's TightInclusionCCD (1.3 on) as a plain object: its
+// constructor, defaults and public members, and its four calls, each
+// forwarding to the free function of the same name with the members. The
+// constructor refuses the tolerance and conservative_rescaling the calls
+// refuse (std::invalid_argument naming the member and value); as members
+// may change afterwards, each call checks them again.
+//
+// It is no ipc::NarrowPhaseCCD: batchccd does not depend on ipc-toolkit.
+// To pass it to ipc::compute_collision_free_stepsize (its narrow_phase_ccd
+// argument), wrap it in a class that forwards each virtual call:
+//
+//   class BatchccdCCD : public ipc::NarrowPhaseCCD {
+//    public:
+//     explicit BatchccdCCD(const batchccd::ipc::NarrowPhase& settings = batchccd::ipc::NarrowPhase())
+//         : narrow_phase(settings) {}
+//
+//     bool point_point_ccd(const ipc::VectorMax3d& p0_t0, const ipc::VectorMax3d& p1_t0,
+//                          const ipc::VectorMax3d& p0_t1, const ipc::VectorMax3d& p1_t1, double& toi,
+//                          const double min_distance = 0.0, const double tmax = 1.0) const override {
+//       return narrow_phase.point_point_ccd(p0_t0, p1_t0, p0_t1, p1_t1, toi, min_distance, tmax);
+//     }
+//     bool point_edge_ccd(const ipc::VectorMax3d& p_t0, const ipc::VectorMax3d& e0_t0,
+//                         const ipc::VectorMax3d& e1_t0, const ipc::VectorMax3d& p_t1,
+//                         const ipc::VectorMax3d& e0_t1, const ipc::VectorMax3d& e1_t1, double& toi,
+//                         const double min_distance = 0.0, const double tmax = 1.0) const override {
+//       return narrow_phase.point_edge_ccd(p_t0, e0_t0, e1_t0, p_t1, e0_t1, e1_t1, toi, min_distance, tmax);
+//     }
+//     bool point_triangle_ccd(const Eigen::Vector3d& p_t0, const Eigen::Vector3d& t0_t0,
+//                             const Eigen::Vector3d& t1_t0, const Eigen::Vector3d& t2_t0,
+//                             const Eigen::Vector3d& p_t1, const Eigen::Vector3d& t0_t1,
+//                             const Eigen::Vector3d& t1_t1, const Eigen::Vector3d& t2_t1, double& toi,
+//                             const double min_distance = 0.0, const double tmax = 1.0) const override {
+//       return narrow_phase.point_triangle_ccd(p_t0, t0_t0, t1_t0, t2_t0, p_t1, t0_t1, t1_t1, t2_t1, toi,
+//                                              min_distance, tmax);
+//     }
+//     bool edge_edge_ccd(const Eigen::Vector3d& ea0_t0, const Eigen::Vector3d& ea1_t0,
+//                        const Eigen::Vector3d& eb0_t0, const Eigen::Vector3d& eb1_t0,
+//                        const Eigen::Vector3d& ea0_t1, const Eigen::Vector3d& ea1_t1,
+//                        const Eigen::Vector3d& eb0_t1, const Eigen::Vector3d& eb1_t1, double& toi,
+//                        const double min_distance = 0.0, const double tmax = 1.0) const override {
+//       return narrow_phase.edge_edge_ccd(ea0_t0, ea1_t0, eb0_t0, eb1_t0, ea0_t1, ea1_t1, eb0_t1, eb1_t1, toi,
+//                                         min_distance, tmax);
+//     }
+//
+//     batchccd::ipc::NarrowPhase narrow_phase;
+//   };
+//
+// These are 1.3's parameter types. From 1.4 on ipc-toolkit spells them
+// Eigen::ConstRef<ipc::VectorMax3d> and Eigen::ConstRef<Eigen::Vector3d>
+// (const Eigen::Ref<const T>&); the bodies stay the same. Where
+// NarrowPhaseCCD has a conservative_rescaling field of its own (ipc-toolkit
+// after 1.5.0, for plane-vertex CCD), set it from narrow_phase's in the
+// constructor. tests/test_ipc.cpp compiles this adapter against stand-ins
+// of both bases.
+class NarrowPhase {
+ public:
+  explicit NarrowPhase(double tolerance = DEFAULT_CCD_TOLERANCE, long max_iterations = DEFAULT_CCD_MAX_ITERATIONS,
+                       double conservative_rescaling = DEFAULT_CCD_CONSERVATIVE_RESCALING);
+
+  template <class P0, class P1, class P2, class P3>
+    requires PlanarOrSpatialPoints<P0, P1, P2, P3>
+  bool point_point_ccd(const P0& p0_t0, const P1& p1_t0, const P2& p0_t1, const P3& p1_t1, double& toi,
+                       double min_distance = 0.0, double tmax = 1.0) const {
+    return batchccd::ipc::point_point_ccd(p0_t0, p1_t0, p0_t1, p1_t1, toi, min_distance, tmax, tolerance,
+                                          max_iterations, conservative_rescaling);
+  }
+
+  template <class P0, class P1, class P2, class P3, class P4, class P5>
+    requires PlanarOrSpatialPoints<P0, P1, P2, P3, P4, P5>
+  bool point_edge_ccd(const P0& p_t0, const P1& e0_t0, const P2& e1_t0, const P3& p_t1, const P4& e0_t1,
+                      const P5& e1_t1, double& toi, double min_distance = 0.0, double tmax = 1.0) const {
+    return batchccd::ipc::point_edge_ccd(p_t0, e0_t0, e1_t0, p_t1, e0_t1, e1_t1, toi, min_distance, tmax, tolerance,
+                                         max_iterations, conservative_rescaling);
+  }
+
+  template <class P0, class P1, class P2, class P3, class P4, class P5, class P6, class P7>
+    requires SpatialPoints<P0, P1, P2, P3, P4, P5, P6, P7>
+  bool edge_edge_ccd(const P0& ea0_t0, const P1& ea1_t0, const P2& eb0_t0, const P3& eb1_t0, const P4& ea0_t1,
+                     const P5& ea1_t1, const P6& eb0_t1, const P7& eb1_t1, double& toi, double min_distance = 0.0,
+                     double tmax = 1.0) const {
+    return batchccd::ipc::edge_edge_ccd(ea0_t0, ea1_t0, eb0_t0, eb1_t0, ea0_t1, ea1_t1, eb0_t1, eb1_t1, toi,
+                                        min_distance, tmax, tolerance, max_iterations, conservative_rescaling);
+  }
+
+  template <class P0, class P1, class P2, class P3, class P4, class P5, class P6, class P7>
+    requires SpatialPoints<P0, P1, P2, P3, P4, P5, P6, P7>
+  bool point_triangle_ccd(const P0& p_t0, const P1& t0_t0, const P2& t1_t0, const P3& t2_t0, const P4& p_t1,
+                          const P5& t0_t1, const P6& t1_t1, const P7& t2_t1, double& toi, double min_distance = 0.0,
+                          double tmax = 1.0) const {
+    return batchccd::ipc::point_triangle_ccd(p_t0, t0_t0, t1_t0, t2_t0, p_t1, t0_t1, t1_t1, t2_t1, toi,
+                                             min_distance, tmax, tolerance, max_iterations, conservative_rescaling);
+  }
+
+  double tolerance;
+  long max_iterations;
+  double conservative_rescaling;
+};
 
 }  // namespace batchccd::ipc
