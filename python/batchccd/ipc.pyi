@@ -58,3 +58,12 @@ class NarrowPhase:
         p_t1: Point, t0_t1: Point, t1_t1: Point, t2_t1: Point,
         min_distance: float = 0.0, tmax: float = 1.0,
     ) -> tuple[bool, float]: ...
+
+# ipctk.compute_collision_free_stepsize over given candidates (rows of
+# vertex ids, as batchccd.mesh_ccd takes them); positions n x 3 or n x 2.
+def collision_free_stepsize(
+    x0: npt.ArrayLike, x1: npt.ArrayLike, faces: npt.ArrayLike | None = None,
+    vertex_face: npt.ArrayLike | None = None, edge_edge: npt.ArrayLike | None = None,
+    vertex_edge: npt.ArrayLike | None = None, vertex_vertex: npt.ArrayLike | None = None,
+    *, min_distance: float = 0.0, narrow_phase: NarrowPhase | None = None, threads: int = 0,
+) -> float: ...

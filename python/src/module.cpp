@@ -794,6 +794,43 @@ outside (0, 1]; max_iterations < 0: no limit.)")
                ", max_iterations=" + std::to_string(self.max_iterations) + ", conservative_rescaling=" +
                py::repr(py::float_(self.conservative_rescaling)).cast<std::string>() + ")";
       });
+
+  module.def(
+      "collision_free_stepsize",
+      [](py::object x0, py::object x1, py::object faces, py::object vertex_face, py::object edge_edge,
+         py::object vertex_edge, py::object vertex_vertex, double min_distance, py::object narrow_phase,
+         int threads) {
+        py::array keep[7];
+        const MeshView mesh{positions_view(x0, "x0", keep[0]), positions_view(x1, "x1", keep[1]),
+                            ids_view(faces, "faces", keep[2])};
+        const auto rows = [&](py::object object, const char* name, py::ssize_t columns, py::array& slot) {
+          if (!object.is_none()) slot = candidate_array(object, name, {columns});
+          return !object.is_none();
+        };
+        CandidateLists candidates;
+        if (rows(vertex_face, "vertex_face", 2, keep[3])) candidates.vertex_face = candidate_span<2>(keep[3]);
+        if (rows(edge_edge, "edge_edge", 4, keep[4])) candidates.edge_edge = candidate_span<4>(keep[4]);
+        if (rows(vertex_edge, "vertex_edge", 3, keep[5])) candidates.vertex_edge = candidate_span<3>(keep[5]);
+        if (rows(vertex_vertex, "vertex_vertex", 2, keep[6])) candidates.vertex_vertex = candidate_span<2>(keep[6]);
+        const ipc::NarrowPhase settings =
+            narrow_phase.is_none() ? ipc::NarrowPhase{} : narrow_phase.cast<ipc::NarrowPhase>();
+        py::gil_scoped_release release;
+        return ipc::collision_free_stepsize(mesh, candidates, min_distance, settings, threads);
+      },
+      "x0"_a, "x1"_a, "faces"_a = py::none(), "vertex_face"_a = py::none(), "edge_edge"_a = py::none(),
+      "vertex_edge"_a = py::none(), "vertex_vertex"_a = py::none(), py::kw_only(), "min_distance"_a = 0.0,
+      "narrow_phase"_a = py::none(), "threads"_a = 0,
+      R"(collision_free_stepsize(x0, x1, faces=None, vertex_face=None, edge_edge=None, vertex_edge=None, vertex_vertex=None, *, min_distance=0.0, narrow_phase=None, threads=0) -> float
+
+ipctk.compute_collision_free_stepsize over a broad phase's candidates, in
+one call (ipc_stepsize.hpp): the largest step in [0, 1] that keeps every
+candidate pair as the narrow phase's calls of this module would (each
+asked with tmax the earliest toi so far), 1 when nothing is in the way.
+x0, x1 are n x 3 or n x 2 (a 2D mesh) positions; the candidate lists are
+rows of vertex ids as in batchccd.mesh_ccd; narrow_phase a NarrowPhase
+(its tolerance, max_iterations and conservative_rescaling; None: the
+defaults). The same step for any thread count. ValueError names a bad
+argument or id.)");
 }
 
 }  // namespace

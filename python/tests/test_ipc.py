@@ -166,3 +166,30 @@ def test_the_stub_beside_the_module_names_everything():
         assert re.search(rf"\b{name}\b", stub), name
     for name in ("point_point_ccd", "point_edge_ccd", "edge_edge_ccd", "point_triangle_ccd"):
         assert len(getattr(ipc, name).__doc__) > 40 and len(getattr(ipc.NarrowPhase, name).__doc__) > 40
+
+
+def test_collision_free_stepsize_is_the_minimum_of_the_calls():
+    # Random 2D segments and vertices: the batch step equals the per-query
+    # calls' minimum, for both thread counts and a custom narrow phase.
+    rng = np.random.default_rng(8)
+    n = 24
+    x0 = np.round(rng.uniform(-0.5, 0.5, (n, 2)) * 2**20) / 2**20
+    x1 = x0 + np.round(rng.uniform(-0.25, 0.25, (n, 2)) * 2**20) / 2**20
+    vertex_edge = np.array([[v, e, e + 1] for v in range(n) for e in range(0, n - 1, 2) if v not in (e, e + 1)],
+                           dtype=np.int32)
+    for narrow_phase in (batchccd.ipc.NarrowPhase(), batchccd.ipc.NarrowPhase(conservative_rescaling=0.5)):
+        for min_distance in (0.0, 1e-3):
+            expected = 1.0
+            for v, a, b in vertex_edge:
+                hit, toi = narrow_phase.point_edge_ccd(x0[v], x0[a], x0[b], x1[v], x1[a], x1[b], min_distance)
+                if hit:
+                    expected = min(expected, toi)
+            assert expected < 1
+            for threads in (1, 2):
+                step = batchccd.ipc.collision_free_stepsize(x0, x1, vertex_edge=vertex_edge, min_distance=min_distance,
+                                                            narrow_phase=narrow_phase, threads=threads)
+                assert step == expected
+    with pytest.raises(ValueError, match="min_distance must be >= 0"):
+        batchccd.ipc.collision_free_stepsize(x0, x1, vertex_edge=vertex_edge, min_distance=-1.0)
+    with pytest.raises(ValueError, match="vertex-edge candidate 0: vertex 99"):
+        batchccd.ipc.collision_free_stepsize(x0, x1, vertex_edge=np.array([[99, 0, 1]], dtype=np.int32))

@@ -36,4 +36,11 @@ double collision_free_stepsize(const MeshView& mesh, const CandidateLists& candi
                                long max_iterations = DEFAULT_CCD_MAX_ITERATIONS,
                                double conservative_rescaling = DEFAULT_CCD_CONSERVATIVE_RESCALING, int threads = 0);
 
+// With the settings of a NarrowPhase, as ipc-toolkit passes its narrow phase.
+inline double collision_free_stepsize(const MeshView& mesh, const CandidateLists& candidates, double min_distance,
+                                      const NarrowPhase& narrow_phase, int threads = 0) {
+  return collision_free_stepsize(mesh, candidates, min_distance, narrow_phase.tolerance,
+                                 narrow_phase.max_iterations, narrow_phase.conservative_rescaling, threads);
+}
+
 }  // namespace batchccd::ipc

@@ -182,11 +182,12 @@ std::optional<int> exact_plane_axis(const Query& query) {
       if (i != far && i != third && !test(origin, points[far], points[third], points[i])) return false;
     return true;
   };
-  if (!others(may_be_in_plane)) return std::nullopt;  // a generic query leaves here
 #ifdef __SIZEOF_INT128__
+  // Exact and cheap on a grid: no filter needed first.
   if (const std::optional<GridPoints> grid = on_integer_grid(*scaled))
     return integer_plane(*grid, 0, far, third, axis) ? std::optional<int>(axis) : std::nullopt;
 #endif
+  if (!others(may_be_in_plane)) return std::nullopt;  // a generic query leaves here
   if (orientation_2d(origin, points[far], points[third], axis) == 0) return std::nullopt;
   const ExactPlane plane(origin, points[far], points[third]);
   const auto in_plane = [&](const Vec3&, const Vec3&, const Vec3&, const Vec3& d) { return plane.contains(d); };

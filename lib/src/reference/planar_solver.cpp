@@ -32,6 +32,8 @@ struct PlanarMotion {
 
   // x_{i+2}(t) for an exact time t in [0, 1].
   Point2 at(int i, double t) const {
+    if (t == 0) return relative[i][0];  // the step's ends need no arithmetic
+    if (t == 1) return relative[i][1];
     const Ball time{t, 0};
     const Ball rest = Ball{1, 0} - time;
     const Point2& start = relative[i][0];
