@@ -66,6 +66,8 @@
 // NarrowPhase (at the end) holds tolerance, max_iterations and
 // conservative_rescaling as TightInclusionCCD does, for code that passes a
 // narrow phase around (ipc-toolkit's compute_collision_free_stepsize).
+// The whole collision-free step over a mesh's candidates is one batch call:
+// collision_free_stepsize (ipc_stepsize.hpp).
 #include <concepts>
 #include <initializer_list>
 #include <span>
