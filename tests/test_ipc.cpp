@@ -735,4 +735,34 @@ TEST(IpcNarrowPhase, AdapterToIpcToolkit14AnswersAsTheFreeFunctions) {
   expect_adapter_answers_as_free_functions<ipc_stand_in::Version14>();
 }
 
+// Cases from ipc-toolkit's own CCD tests (the facts, written anew).
+
+// Two points crossing diagonally meet at t = 1/2, in 2D and in 3D, at every
+// separation its tests use: a hit no later than 1/2.
+TEST(IpcToolkitCases, PointsMeetAtOneHalfIn2DAnd3D) {
+  const Eigen::Vector3d p0_t0(0, 0, 0), p0_t1(1, 1, 1), p1_t0(1, 1, 0), p1_t1(0, 0, 1);
+  for (const int dim : {2, 3})
+    for (const double min_distance : {0.0, 1e-6, 1e-4, 1e-2}) {
+      const Eigen::VectorXd a0 = p0_t0.head(dim), a1 = p0_t1.head(dim), b0 = p1_t0.head(dim), b1 = p1_t1.head(dim);
+      double toi = 2;
+      ASSERT_TRUE(ipc::point_point_ccd(a0, b0, a1, b1, toi, min_distance)) << dim << "D, " << min_distance;
+      EXPECT_LE(toi, 0.5);
+      EXPECT_GT(toi, 0.5 * ipc::DEFAULT_CCD_CONSERVATIVE_RESCALING - 1e-9);
+    }
+}
+
+// A 2D edge that shrinks through a single point before the point reaches
+// it: the edge (-1 + 4t .. 1 - 4t on the x axis) is a point at t = 1/4, the
+// point (0, 1 - 2t) crosses the axis at t = 1/2, inside the edge again (then
+// [-1, 1] reversed): the contact is at 1/2, not at the degenerate moment.
+TEST(IpcToolkitCases, EdgeDegeneratingBeforeTheImpact) {
+  const Eigen::Vector2d p_t0(0, 1), p_t1(0, -1), e0_t0(-1, 0), e0_t1(3, 0), e1_t0(1, 0), e1_t1(-3, 0);
+  double toi = 2;
+  ASSERT_TRUE(ipc::point_edge_ccd(p_t0, e0_t0, e1_t0, p_t1, e0_t1, e1_t1, toi));
+  EXPECT_LE(toi, 0.5);
+  EXPECT_GT(toi, 0.5 - 1e-4);  // the effective separation (1e-4) kept free at speed 2, and tolerance
+  // Stopping at 0.4, the point never reaches the edge.
+  EXPECT_FALSE(ipc::point_edge_ccd(p_t0, e0_t0, e1_t0, p_t1, e0_t1, e1_t1, toi, 0.0, 0.4));
+}
+
 }  // namespace
