@@ -128,6 +128,21 @@ TEST(PlanarAxis, RefusesAPointOneUlpOffThePlane) {
   }
 }
 
+// Coordinates on a grid finer than 2^-39 (below 40 bits of the largest):
+// the exact test in expansions rather than in 128-bit integers.
+TEST(PlanarAxis, FineGridPlanesAreTestedInExpansions) {
+  Query query;
+  for (int i = 0; i < 8; ++i) {
+    const double s = 1 + std::ldexp(static_cast<double>(i * i + 1), -50), t = 0.5 - std::ldexp(i, -48);
+    query.points[i] = kTilted(s, i % 2 ? t : -t);
+  }
+  const std::optional<int> axis = exact::exact_plane_axis(query);
+  ASSERT_TRUE(axis.has_value());
+  EXPECT_NE(kTilted.u.cross(kTilted.v)[*axis], 0);
+  query.points[5][*axis] = std::nextafter(query.points[5][*axis], 10.0);
+  EXPECT_FALSE(exact::exact_plane_axis(query).has_value());
+}
+
 TEST(PlanarAxis, RefusesGenericAndCollinearQueries) {
   Query generic;
   for (int i = 0; i < 8; ++i) generic.points[i] = Vec3(i % 3, i * i % 5, (i * 7) % 4);

@@ -47,14 +47,6 @@ std::optional<Query> normalized(const Query& query) {
   return result;
 }
 
-// The sign of (b - a) x (c - a) projected along `axis`, exactly.
-int orientation_2d(const Vec3& a, const Vec3& b, const Vec3& c, int axis) {
-  const int x = (axis + 1) % 3, y = (axis + 2) % 3;
-  const auto ab_x = difference(b[x], a[x]), ab_y = difference(b[y], a[y]);
-  const auto ac_x = difference(c[x], a[x]), ac_y = difference(c[y], a[y]);
-  return (ab_x * ac_y - ab_y * ac_x).sign();
-}
-
 // Whether d may lie in the plane of a, b, c: orient3d(a, b, c, d) in
 // double is within its error bound of 0 (generous: a difference's rounding,
 // two products and two sums on each term's path, well under 32 u of the
@@ -84,6 +76,10 @@ class ExactPlane {
       normal_[i] = ab[j] * ac[k] - ab[k] * ac[j];
     }
   }
+
+  // The sign of the normal's component along `axis`: 0 when the triangle
+  // a, b, c projects onto a line there.
+  int normal_sign(int axis) const { return normal_[axis].sign(); }
 
   bool contains(const Vec3& d) const {
     const auto term = [&](int i) { return difference(d[i], a_[i]) * normal_[i]; };
@@ -126,7 +122,7 @@ std::optional<GridPoints> on_integer_grid(const Query& normalized) {
   return grid;
 }
 
-// The plane test of exact_plane_axis on grid integers: nullopt when a point
+// The plane test of exact_plane_axis on grid integers: false when a point
 // is off the plane of the references or the projection along `axis` folds it.
 bool integer_plane(const GridPoints& p, int origin, int far, int third, int axis) {
   std::array<std::int64_t, 3> ab, ac;
@@ -175,11 +171,11 @@ std::optional<int> exact_plane_axis(const Query& query) {
   if (third == 0) return std::nullopt;  // collinear throughout (as far as double tells)
   int axis = 0;
   normal.cwiseAbs().maxCoeff(&axis);
-  // The projection maps the plane one to one when the references stay a
-  // proper triangle in it.
+  const Vec3 &a = origin, &b = points[far], &c = points[third];
+  // Whether `test` holds for every point but the references.
   const auto others = [&](auto&& test) {
     for (int i = 1; i < 8; ++i)
-      if (i != far && i != third && !test(origin, points[far], points[third], points[i])) return false;
+      if (i != far && i != third && !test(points[i])) return false;
     return true;
   };
 #ifdef __SIZEOF_INT128__
@@ -187,11 +183,13 @@ std::optional<int> exact_plane_axis(const Query& query) {
   if (const std::optional<GridPoints> grid = on_integer_grid(*scaled))
     return integer_plane(*grid, 0, far, third, axis) ? std::optional<int>(axis) : std::nullopt;
 #endif
-  if (!others(may_be_in_plane)) return std::nullopt;  // a generic query leaves here
-  if (orientation_2d(origin, points[far], points[third], axis) == 0) return std::nullopt;
-  const ExactPlane plane(origin, points[far], points[third]);
-  const auto in_plane = [&](const Vec3&, const Vec3&, const Vec3&, const Vec3& d) { return plane.contains(d); };
-  if (!others(in_plane)) return std::nullopt;
+  // A generic query leaves at the filter.
+  if (!others([&](const Vec3& d) { return may_be_in_plane(a, b, c, d); })) return std::nullopt;
+  const ExactPlane plane(a, b, c);
+  // The projection maps the plane one to one when the references stay a
+  // proper triangle in it.
+  if (plane.normal_sign(axis) == 0) return std::nullopt;
+  if (!others([&](const Vec3& d) { return plane.contains(d); })) return std::nullopt;
   return axis;
 }
 
