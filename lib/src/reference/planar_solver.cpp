@@ -288,18 +288,16 @@ class PlanarSearch {
   // [start, end]: its first point in the interval is the first contact.
   Step single_condition(const Requirement& requirement, const Quadratic& q, double start, double end) const {
     const double sign = requirement.sign;
-    const Ball f0{sign * q.start.middle, q.start.radius}, f2{sign * q.end.middle, q.end.radius};
+    const auto signed_ball = [sign](const Ball& value) { return Ball{sign * value.middle, value.radius}; };
+    const Ball f0 = signed_ball(q.start), f2 = signed_ball(q.end);
     if (f0.certainly_positive()) return {PlanarOutcome{true, true, start, start}, false};
     if (!(f0.certainly_negative() && f2.certainly_positive())) return {std::nullopt, true};
     // One root in (start, end): f rises through it once.
-    const double root = quadratic_root(sign * q.start.middle, sign * 0.5 * q.middle.middle, sign * q.end.middle);
+    const double root = quadratic_root(f0.middle, sign * 0.5 * q.middle.middle, f2.middle);
     const double t = start + root * (end - start);
+    const auto f = [&](double time) { return signed_ball(condition_at(requirement.index, time)); };
     for (double width = toi_width_ / 64; width <= toi_width_ / 2; width *= 4) {
       const double low = std::max(start, t - width), high = std::min(end, t + width);
-      const auto f = [&](double time) {
-        const Ball at = condition_at(requirement.index, time);
-        return Ball{sign * at.middle, at.radius};
-      };
       if (low < high && (low == start || f(low).certainly_negative()) &&
           (high == end || f(high).certainly_positive()))
         return {PlanarOutcome{true, true, low, high}, false};
