@@ -174,13 +174,9 @@ void register_all() {
         }
 }
 
+const bool registered = (register_all(), true);
+
 }  // namespace
 }  // namespace batchccd
 
-int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  batchccd::register_all();
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+BENCHMARK_MAIN();
