@@ -2,8 +2,9 @@
 // and ../shared/data (sample queries and the scenes' candidate lists), each
 // query timed alone through query_ccd (filters, solver, exact stage) as the
 // best of three runs on one thread. Prints the five slowest per mode with
-// where they come from, and how many take longer than 0.5 ms. Asserts
-// nothing. Usage: batchccd_slowest_queries [shared-data-dir]
+// where they come from, how many take longer than 0.5 ms, and what the
+// queries the exact stage settled cost (their count, mean and slowest).
+// Asserts nothing. Usage: batchccd_slowest_queries [shared-data-dir]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -31,6 +32,7 @@ struct Timing {
   const Input* input;
   std::size_t index;
   bool hit;
+  bool escalated;
 };
 
 double best_of_three(Kind kind, const Query& query, const Options& options, QueryResult& result) {
@@ -82,16 +84,30 @@ int main(int argc, char** argv) {
     for (const Input& input : all)
       for (std::size_t i = 0; i < input.queries.size(); ++i) {
         QueryResult result;
-        const double seconds = best_of_three(input.kind, input.queries[i], {.mode = mode}, result);
+        const Options options{.mode = mode, .threads = 1};
+        const double seconds = best_of_three(input.kind, input.queries[i], options, result);
         total += seconds;
-        timings.push_back({seconds, &input, i, result.hit});
+        const bool escalated =
+            batch_ccd(input.kind, std::span(&input.queries[i], 1), options).counters.exact_escalations > 0;
+        timings.push_back({seconds, &input, i, result.hit, escalated});
       }
     std::sort(timings.begin(), timings.end(), [](const Timing& a, const Timing& b) { return a.seconds > b.seconds; });
     const auto slow = std::count_if(timings.begin(), timings.end(), [](const Timing& t) { return t.seconds > 0.5e-3; });
     std::printf("\n%s: mean %.2f us, over 0.5 ms: %td; slowest:\n", to_string(mode), total / static_cast<double>(count) * 1e6, slow);
     for (std::size_t k = 0; k < std::min<std::size_t>(5, timings.size()); ++k)
-      std::printf("  %9.1f us  %-5s %s %s #%zu\n", timings[k].seconds * 1e6, timings[k].hit ? "hit" : "miss",
-                  timings[k].input->name.c_str(), to_string(timings[k].input->kind), timings[k].index);
+      std::printf("  %9.1f us  %-5s %-9s %s %s #%zu\n", timings[k].seconds * 1e6, timings[k].hit ? "hit" : "miss",
+                  timings[k].escalated ? "escalated" : "", timings[k].input->name.c_str(),
+                  to_string(timings[k].input->kind), timings[k].index);
+    std::size_t escalated = 0;
+    double escalated_total = 0, escalated_max = 0;
+    for (const Timing& timing : timings)
+      if (timing.escalated) {
+        ++escalated;
+        escalated_total += timing.seconds;
+        escalated_max = std::max(escalated_max, timing.seconds);
+      }
+    std::printf("  escalated to the exact stage: %zu queries, mean %.1f us, slowest %.1f us\n", escalated,
+                escalated ? escalated_total / static_cast<double>(escalated) * 1e6 : 0.0, escalated_max * 1e6);
   }
   return 0;
 }

@@ -56,6 +56,9 @@ struct Settings {
   // Planar motion decided in its plane (docs/design.md §5a); false sends it
   // down the generic path, where the exact stage decides it.
   bool planar_path = true;
+  // The exact stage tries floating-point expansions before GMP integers
+  // (docs/design.md §6a); false: integers alone. Decisions are the same.
+  bool expansion_stage = true;
 };
 
 // A mode or a baseline: what the tools run side by side.

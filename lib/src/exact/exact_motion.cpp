@@ -65,4 +65,23 @@ RelativeMotion exact_relative_motion(Kind kind, const Query& query) {
   return motion;
 }
 
+std::optional<Query> normalized(const Query& query, int floor_exponent) {
+  double largest = 0;
+  for (const Vec3& point : query.points) largest = std::max(largest, point.cwiseAbs().maxCoeff());
+  if (largest == 0) return std::nullopt;
+  const int exponent = -std::ilogb(largest);
+  if (exponent < -1000 || exponent > 1000) return std::nullopt;  // 2^exponent is one double
+  const double factor = std::ldexp(1.0, exponent);
+  const double floor = std::ldexp(largest, floor_exponent);
+  Query result;
+  for (int i = 0; i < 8; ++i) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const double coordinate = query.points[i][axis];
+      if (coordinate != 0 && std::fabs(coordinate) < floor) return std::nullopt;
+      result.points[i][axis] = coordinate * factor;  // exact: the result stays a normal double
+    }
+  }
+  return result;
+}
+
 }  // namespace batchccd::exact

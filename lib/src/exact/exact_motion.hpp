@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 
 #include "batchccd/query.hpp"
 #include "exact/polynomial.hpp"
@@ -19,5 +20,13 @@ namespace batchccd::exact {
 using RelativeMotion = std::array<PolynomialVector, 3>;
 
 RelativeMotion exact_relative_motion(Kind kind, const Query& query);
+
+// The query scaled by a power of two so that its largest coordinate lies in
+// [1, 2): exact, and the same for the query scaled by any power of two, so
+// what is computed from it does not depend on units. nullopt when every
+// coordinate is zero or a nonzero one is below 2^floor_exponent of the
+// largest: floating-point expansions of products of such coordinates could
+// underflow (the callers' bounds say how far down they may reach).
+std::optional<Query> normalized(const Query& query, int floor_exponent);
 
 }  // namespace batchccd::exact

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "exact/exact_motion.hpp"
+#include "exact/expansion_stage.hpp"
 #include "exact/origin_in_triangle.hpp"
 #include "exact/root_isolation.hpp"
 
@@ -84,6 +85,11 @@ bool lies_after(IsolatedRoot& root, const IsolatedRoot& limit, const Polynomial&
 }  // namespace
 
 ExactOutcome solve_exactly(Kind kind, const Query& query, bool need_toi, double tmax) {
+  if (const std::optional<ExactOutcome> outcome = solve_with_expansions(kind, query, need_toi, tmax)) return *outcome;
+  return solve_with_integers(kind, query, need_toi, tmax);
+}
+
+ExactOutcome solve_with_integers(Kind kind, const Query& query, bool need_toi, double tmax) {
   std::vector<TriangleConditions> triangles;
   for (const MovingTriangle& triangle : difference_triangles(kind, exact_relative_motion(kind, query)))
     triangles.emplace_back(triangle);

@@ -27,6 +27,11 @@ struct ExactOutcome {
 // polynomials (see root_isolation.hpp).
 // Contacts after tmax (in (0, 1]) do not count: the candidates after it are
 // compared with it exactly.
+// Floating-point expansions decide first where they can
+// (expansion_stage.hpp); GMP integers decide the rest.
 ExactOutcome solve_exactly(Kind kind, const Query& query, bool need_toi, double tmax = 1.0);
+
+// The same with integers alone.
+ExactOutcome solve_with_integers(Kind kind, const Query& query, bool need_toi, double tmax = 1.0);
 
 }  // namespace batchccd::exact

@@ -164,4 +164,144 @@ Expansion<2 * M * N> operator*(const Expansion<M>& e, const Expansion<N>& f) {
 // so every product term is a multiple of 2^-756 and no error term
 // underflows. Callers scale their inputs into that range first.
 
+// An expansion of any length up to kCapacity terms, compressed after every
+// operation (Shewchuk's Compress: nonoverlapping, increasing magnitude, the
+// largest term within an ulp of the sum), for computations whose lengths
+// are not known at compile time: polynomials in t. An operation whose
+// result needs more terms throws TooLong, and the caller leaves the
+// question to exact integers. Exact under the same range conditions as
+// above, which the caller establishes.
+class BoundedExpansion {
+ public:
+  static constexpr std::size_t kCapacity = 24;
+  struct TooLong {};
+
+  BoundedExpansion() = default;
+  // Copies move the terms in use only: most values hold a few of them.
+  BoundedExpansion(const BoundedExpansion& other) : size_(other.size_) {
+    std::copy_n(other.terms_.begin(), size_, terms_.begin());
+  }
+  BoundedExpansion& operator=(const BoundedExpansion& other) {
+    size_ = other.size_;
+    std::copy_n(other.terms_.begin(), size_, terms_.begin());
+    return *this;
+  }
+  explicit BoundedExpansion(double value) {
+    if (value != 0) terms_[size_++] = value;
+  }
+  static BoundedExpansion difference(double a, double b) {
+    double x, error;
+    two_sum(a, -b, x, error);
+    Scratch pair;  // compressed, so that every value is strongly nonoverlapping
+    pair.push(error);
+    pair.push(x);
+    return compressed(pair);
+  }
+
+  int sign() const { return size_ == 0 ? 0 : (terms_[size_ - 1] > 0 ? 1 : -1); }
+  bool is_zero() const { return size_ == 0; }
+  // The magnitudes of the largest and the smallest term (0 for zero).
+  double largest_term() const { return size_ == 0 ? 0 : std::fabs(terms_[size_ - 1]); }
+  double smallest_term() const { return size_ == 0 ? 0 : std::fabs(terms_[0]); }
+  // The sum, rounded: within a few ulps of it (the terms are compressed).
+  double estimate() const {
+    double sum = 0;
+    for (std::size_t i = 0; i < size_; ++i) sum += terms_[i];
+    return sum;
+  }
+
+  friend BoundedExpansion operator+(const BoundedExpansion& e, const BoundedExpansion& f) {
+    Scratch sum;
+    std::size_t i = 0, j = 0;
+    const auto next_smallest = [&] {
+      const bool take_e = j == f.size_ || (i < e.size_ && std::fabs(e.terms_[i]) <= std::fabs(f.terms_[j]));
+      return take_e ? e.terms_[i++] : f.terms_[j++];
+    };
+    if (e.size_ + f.size_ > 0) {
+      double carry = next_smallest();
+      while (i < e.size_ || j < f.size_) {
+        double error;
+        two_sum(carry, next_smallest(), carry, error);
+        sum.push(error);
+      }
+      sum.push(carry);
+    }
+    return compressed(sum);
+  }
+  friend BoundedExpansion operator-(BoundedExpansion e) {
+    for (std::size_t i = 0; i < e.size_; ++i) e.terms_[i] = -e.terms_[i];
+    return e;
+  }
+  friend BoundedExpansion operator-(const BoundedExpansion& e, const BoundedExpansion& f) { return e + (-f); }
+  // e * b for a double b.
+  friend BoundedExpansion operator*(const BoundedExpansion& e, double b) {
+    Scratch product;
+    if (e.size_ > 0 && b != 0) {
+      double carry, error;
+      two_product(e.terms_[0], b, carry, error);
+      product.push(error);
+      for (std::size_t i = 1; i < e.size_; ++i) {
+        double term, term_error, sum, sum_error;
+        two_product(e.terms_[i], b, term, term_error);
+        two_sum(carry, term_error, sum, sum_error);
+        product.push(sum_error);
+        two_sum(term, sum, carry, error);
+        product.push(error);
+      }
+      product.push(carry);
+    }
+    return compressed(product);
+  }
+  friend BoundedExpansion operator*(const BoundedExpansion& e, const BoundedExpansion& f) {
+    BoundedExpansion product;
+    for (std::size_t j = 0; j < f.size_; ++j) product = product + e * f.terms_[j];
+    return product;
+  }
+
+ private:
+  struct Scratch {  // an uncompressed intermediate: twice the capacity
+    std::array<double, 2 * kCapacity> terms;
+    std::size_t size = 0;
+    void push(double term) {
+      if (term != 0) terms[size++] = term;
+    }
+  };
+
+  // Shewchuk's Compress: sum from the top down, then from the bottom up.
+  static BoundedExpansion compressed(const Scratch& e) {
+    BoundedExpansion result;
+    if (e.size == 0) return result;
+    std::array<double, 2 * kCapacity> g;
+    std::size_t bottom = e.size - 1;
+    double q = e.terms[e.size - 1];
+    for (std::size_t i = e.size - 1; i-- > 0;) {
+      const double sum = q + e.terms[i];  // Fast-Two-Sum: |q| >= |e_i| here
+      const double small = e.terms[i] - (sum - q);
+      if (small != 0) {
+        g[bottom--] = sum;
+        q = small;
+      } else {
+        q = sum;
+      }
+    }
+    g[bottom] = q;
+    std::size_t top = 0;
+    std::array<double, 2 * kCapacity> h;
+    for (std::size_t i = bottom + 1; i < e.size; ++i) {
+      const double sum = g[i] + q;
+      const double small = q - (sum - g[i]);
+      if (small != 0) h[top++] = small;
+      q = sum;
+    }
+    if (q != 0) h[top++] = q;
+    if (top > kCapacity) throw TooLong{};
+    std::copy_n(h.begin(), top, result.terms_.begin());
+    result.size_ = top;
+    return result;
+  }
+
+  std::array<double, kCapacity> terms_;
+  std::size_t size_ = 0;
+};
+
 }  // namespace batchccd::exact

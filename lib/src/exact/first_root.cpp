@@ -4,12 +4,18 @@
 
 #include "exact/exact_motion.hpp"
 #include "exact/exact_solver.hpp"
+#include "exact/expansion_stage.hpp"
 #include "exact/root_isolation.hpp"
 
 namespace batchccd::exact {
 
 std::optional<double> first_root_lower_bound(Kind kind, const Query& query, double low,
                                              double high) {
+  if (const std::optional<double> toi = first_root_with_expansions(kind, query, low, high)) return toi;
+  return first_root_with_integers(kind, query, low, high);
+}
+
+std::optional<double> first_root_with_integers(Kind kind, const Query& query, double low, double high) {
   // [low, high] = [k / 2^j, (k + 1) / 2^j], as bisection from [0, 1] makes it.
   int width_exponent = 0;
   if (!(high > low) || std::frexp(high - low, &width_exponent) != 0.5) return std::nullopt;

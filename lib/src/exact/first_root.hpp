@@ -14,7 +14,12 @@ namespace batchccd::exact {
 // Isolates that root exactly and returns a lower bound within
 // 2^-kToiBits of it; nullopt when [low, high] is not a dyadic interval or an
 // iteration bound was reached (the full exact stage then decides).
+// Floating-point expansions answer first where they can
+// (expansion_stage.hpp), GMP integers otherwise.
 std::optional<double> first_root_lower_bound(Kind kind, const Query& query, double low,
                                              double high);
+
+// The same with integers alone.
+std::optional<double> first_root_with_integers(Kind kind, const Query& query, double low, double high);
 
 }  // namespace batchccd::exact

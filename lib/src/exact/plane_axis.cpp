@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include "exact/exact_motion.hpp"
 #include "exact/expansion.hpp"
 
 namespace batchccd::exact {
@@ -22,29 +23,6 @@ std::optional<int> shared_coordinate(const Query& query) {
       return axis;
   }
   return std::nullopt;
-}
-
-// The query scaled by a power of two so that its largest coordinate lies
-// in [1, 2): exact, and the same for the query scaled by any power of two,
-// so the test below does not depend on units. nullopt when a nonzero
-// coordinate is below 2^-200 of the largest (it could be rounded here, and
-// expansions of it could underflow).
-std::optional<Query> normalized(const Query& query) {
-  double largest = 0;
-  for (const Vec3& point : query.points) largest = std::max(largest, point.cwiseAbs().maxCoeff());
-  if (largest == 0) return std::nullopt;
-  const int exponent = -std::ilogb(largest);
-  if (exponent < -1000 || exponent > 1000) return std::nullopt;  // 2^exponent is one double
-  const double factor = std::ldexp(1.0, exponent);
-  Query result;
-  for (int i = 0; i < 8; ++i) {
-    for (int axis = 0; axis < 3; ++axis) {
-      const double coordinate = query.points[i][axis];
-      if (coordinate != 0 && std::fabs(coordinate) < 0x1p-200 * largest) return std::nullopt;
-      result.points[i][axis] = coordinate * factor;  // exact: the result stays a normal double
-    }
-  }
-  return result;
 }
 
 // Whether d may lie in the plane of a, b, c: orient3d(a, b, c, d) in
@@ -149,7 +127,7 @@ bool integer_plane(const GridPoints& p, int origin, int far, int third, int axis
 
 std::optional<int> exact_plane_axis(const Query& query) {
   if (const auto axis = shared_coordinate(query)) return axis;
-  const std::optional<Query> scaled = normalized(query);
+  const std::optional<Query> scaled = normalized(query, -200);
   if (!scaled) return std::nullopt;
   // Three reference points spanning the plane: the first, the farthest from
   // it, and the one making the largest normal with those two.

@@ -64,8 +64,11 @@ void evaluate_within_distance(const ScaledQuery& scaled, Kind kind, const Option
   if (outcome.hit) evaluation.result = {true, outcome.toi, Status::ok};
 }
 
-void settle_exactly(Kind kind, const Query& query, const Options& options, Evaluation& evaluation) {
-  const exact::ExactOutcome outcome = exact::solve_exactly(kind, query, options.need_toi, options.tmax);
+void settle_exactly(Kind kind, const Query& query, const Options& options, const lab::Settings& lab,
+                    Evaluation& evaluation) {
+  const exact::ExactOutcome outcome =
+      lab.expansion_stage ? exact::solve_exactly(kind, query, options.need_toi, options.tmax)
+                          : exact::solve_with_integers(kind, query, options.need_toi, options.tmax);
   evaluation.exact_stage = ExactStage::decision;
   evaluation.undecided = outcome.bound_reached;
   evaluation.result = outcome.hit ? QueryResult{true, outcome.toi, Status::ok} : QueryResult{};
@@ -76,7 +79,7 @@ void settle_exactly(Kind kind, const Query& query, const Options& options, Evalu
 // what its signs cannot settle, exactly. False when the motion is not
 // planar (or the test cannot tell): the generic path decides then.
 bool decide_in_plane(Kind kind, const Query& query, const ScaledQuery& scaled, const Options& options,
-                     Decider decider, Evaluation& evaluation) {
+                     const lab::Settings& lab, Decider decider, Evaluation& evaluation) {
   const std::optional<int> axis = exact::exact_plane_axis(query);
   if (!axis) return false;
   const double toi_width =
@@ -84,7 +87,7 @@ bool decide_in_plane(Kind kind, const Query& query, const ScaledQuery& scaled, c
   const PlanarOutcome outcome =
       solve_planar(planar_shape(kind, query), scaled, *axis, options.tmax, toi_width);
   if (!outcome.certain) {
-    settle_exactly(kind, query, options, evaluation);
+    settle_exactly(kind, query, options, lab, evaluation);
   } else if (outcome.hit) {
     evaluation.result = {true, outcome.toi, Status::ok};
   }
@@ -135,13 +138,13 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, const
     // Scaling may have flushed tiny differences to zero: only exact
     // arithmetic can tell those from a true coincidence.
     if (exact) {
-      settle_exactly(kind, query, options, evaluation);
+      settle_exactly(kind, query, options, lab, evaluation);
     } else {
       evaluation.result = {true, 0.0, Status::ok};
     }
     return evaluation;
   }
-  if (decider != Decider::fast && lab.planar_path && decide_in_plane(kind, query, scaled, options, decider, evaluation))
+  if (decider != Decider::fast && lab.planar_path && decide_in_plane(kind, query, scaled, options, lab, decider, evaluation))
     return evaluation;
   SolverOutcome outcome = solve_inclusion(kind, scaled, solver_settings(options, decider));
   // A certain contact whose interval straddles tmax may come after it:
@@ -158,7 +161,7 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, const
       misses_in_projection(kind, query, scaled, options.tmax))
     return evaluation;
   if (!outcome.certain && (exact || (conservative && !outcome.within_tolerance))) {
-    settle_exactly(kind, query, options, evaluation);
+    settle_exactly(kind, query, options, lab, evaluation);
     return evaluation;
   }
   evaluation.undecided = outcome.undecided;
@@ -173,10 +176,13 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, const
     // that width (slow relative motion, a multiple root, or a root exactly
     // at a halving point): its root located exactly.
     evaluation.exact_stage = ExactStage::toi;
-    if (const auto toi = exact::first_root_lower_bound(kind, query, outcome.toi, outcome.toi_upper)) {
+    const auto toi = lab.expansion_stage
+                         ? exact::first_root_lower_bound(kind, query, outcome.toi, outcome.toi_upper)
+                         : exact::first_root_with_integers(kind, query, outcome.toi, outcome.toi_upper);
+    if (toi) {
       evaluation.result.toi = *toi;
     } else {
-      settle_exactly(kind, query, options, evaluation);
+      settle_exactly(kind, query, options, lab, evaluation);
     }
   }
   return evaluation;

@@ -1,0 +1,580 @@
+#include "exact/expansion_stage.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "exact/exact_motion.hpp"
+#include "exact/expansion.hpp"
+#include "reference/scaled_query.hpp"
+
+namespace batchccd::exact {
+namespace {
+
+using Value = BoundedExpansion;
+
+// The TOI grid: roots are located to intervals [k, k + 1] 2^-40, and
+// where signs need it to 2^-52 (the finest grid of doubles in [1/2, 1)),
+// then 2^-76 and 2^-100, with times held as two doubles.
+constexpr int kGridBits = static_cast<int>(kToiBits);
+constexpr int kDoubleGridBits = 52;
+constexpr int kFinerGridBits[] = {76, 100};
+
+// Why expansions stay exact here (expansion.hpp: no overflow, no
+// underflow). The query is normalized: coordinates below 2 in magnitude,
+// nonzero ones at least 2^-60, so each is a multiple of 2^-112 and so is
+// every difference. The inside test's polynomials are sums of products of
+// four such differences: coefficients below 2^24 and multiples of 2^-448.
+// They are evaluated at times on the 2^-100 grid (degree 4: a factor
+// 2^-400) or subdivided 40 times (degree 3: 2^-120): every term stays a
+// multiple of 2^-848, far above the smallest normal double.
+constexpr int kCoordinateFloor = -60;
+constexpr int kTimeFloor = 100;  // times evaluated exactly lie on the 2^-100 grid
+
+bool on_time_grid(double t) {
+  const double scaled = std::ldexp(t, kTimeFloor);
+  return scaled == std::floor(scaled);
+}
+
+// A polynomial in t of degree at most 4 with exact coefficients.
+struct Polynomial4 {
+  std::array<Value, 5> c;  // c[i] multiplies t^i
+  int size = 0;            // coefficients in use; leading ones may be zero
+
+  int degree() const {
+    for (int i = size - 1; i >= 0; --i)
+      if (!c[i].is_zero()) return i;
+    return -1;
+  }
+  // Exact for t on the time grid, a double or (past the doubles' grid) an
+  // expansion.
+  template <class Time>
+  Value at(const Time& t) const {
+    Value value;
+    for (int i = size - 1; i >= 0; --i) value = value * t + c[i];
+    return value;
+  }
+};
+
+Polynomial4 operator+(const Polynomial4& a, const Polynomial4& b) {
+  Polynomial4 sum;
+  sum.size = std::max(a.size, b.size);
+  for (int i = 0; i < sum.size; ++i) sum.c[i] = (i < a.size ? a.c[i] : Value()) + (i < b.size ? b.c[i] : Value());
+  return sum;
+}
+
+Polynomial4 operator-(Polynomial4 a) {
+  for (int i = 0; i < a.size; ++i) a.c[i] = -a.c[i];
+  return a;
+}
+
+Polynomial4 operator-(const Polynomial4& a, const Polynomial4& b) { return a + (-b); }
+
+Polynomial4 operator*(const Polynomial4& a, const Polynomial4& b) {
+  Polynomial4 product;
+  product.size = a.size + b.size - 1;  // at most 5 where this file multiplies
+  for (int i = 0; i < a.size; ++i)
+    for (int j = 0; j < b.size; ++j) product.c[i + j] = product.c[i + j] + a.c[i] * b.c[j];
+  return product;
+}
+
+// A double evaluation of an expression at the low end of a time interval,
+// with a bound of its rounding error, and bounds of the expression's
+// magnitude and slope over the interval: a filter that settles most signs
+// before any expansion.
+struct Estimate {
+  double value = 0, error = 0;      // |exact value - value| <= error
+  double magnitude = 0, slope = 0;  // |f| and |f'| on the interval are at most these
+
+  static Estimate constant(const Value& exact) {
+    const double value = exact.estimate();
+    const double error = 0x1p-51 * std::fabs(value);  // a compressed expansion's sum: 2 ulps
+    return {value, error, std::fabs(value) + error, 0};
+  }
+};
+
+constexpr double kRounding = 0x1p-52;  // one rounding, with room for the bound's own
+
+Estimate operator+(const Estimate& a, const Estimate& b) {
+  const double value = a.value + b.value;
+  return {value, a.error + b.error + kRounding * std::fabs(value), a.magnitude + b.magnitude, a.slope + b.slope};
+}
+
+Estimate operator-(Estimate a) {
+  a.value = -a.value;
+  return a;
+}
+
+Estimate operator-(const Estimate& a, const Estimate& b) { return a + (-b); }
+
+Estimate operator*(const Estimate& a, const Estimate& b) {
+  const double value = a.value * b.value;
+  const double error = std::fabs(a.value) * b.error + std::fabs(b.value) * a.error + a.error * b.error +
+                       kRounding * std::fabs(value);
+  return {value, error, a.magnitude * b.magnitude, a.slope * b.magnitude + a.magnitude * b.slope};
+}
+
+// Vector algebra, the same for exact values, estimates and polynomials.
+template <class Number>
+using Vector = std::array<Number, 3>;
+
+template <class Number>
+Vector<Number> operator-(const Vector<Number>& a, const Vector<Number>& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+
+template <class Number>
+Vector<Number> cross(const Vector<Number>& a, const Vector<Number>& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+template <class Number>
+Number dot(const Vector<Number>& a, const Vector<Number>& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+// The query's motion as three moving vectors, each the difference of two
+// of its points (design numbering 1..4), linear in t:
+//   vertex-face: A = x2 - x1, B = x3 - x1, C = x4 - x1 (triangle edges, vertex);
+//   edge-edge:   A = x2 - x1, B = x4 - x3, C = x3 - x1 (the edges, between them).
+// With n = A x B the coplanarity cubic is C . n, and at its roots, where
+// n != 0, the contact is a sign condition on X = (C x B) . n and
+// Y = (A x C) . n (vertex-face) or (C x A) . n (edge-edge), which are the
+// contact's parameters times N = |n|^2: vertex-face X, Y, N - X - Y >= 0
+// (barycentric coordinates), edge-edge X, N - X, Y, N - Y >= 0 (the points
+// on the edges). The same mathematics as the exact stage's triangles
+// (origin_in_triangle.hpp), in the edges' own parameters, so that no
+// diagonal splits the edge-edge square.
+template <class Number>
+using Motion = std::array<Vector<Number>, 3>;
+
+template <class Number>
+Number coplanarity_cubic(const Motion<Number>& v) {
+  return dot(v[2], cross(v[0], v[1]));
+}
+
+// The numerators of the contact condition at a root (nonnegative at a
+// contact); `count` of them are in use.
+template <class Number>
+struct ContactNumerators {
+  std::array<Number, 4> values;
+  int count = 0;
+};
+
+template <class Number>
+ContactNumerators<Number> contact_numerators(Kind kind, const Motion<Number>& v) {
+  const Vector<Number> n = cross(v[0], v[1]);
+  const Number squared = dot(n, n), x = dot(cross(v[2], v[1]), n);
+  if (kind == Kind::vertex_face) {
+    const Number y = dot(cross(v[0], v[2]), n);
+    return {{x, y, squared - x - y}, 3};
+  }
+  const Number y = dot(cross(v[2], v[0]), n);
+  return {{x, squared - x, y, squared - y}, 4};
+}
+
+// P_from - P_to, linear in t.
+Vector<Polynomial4> moving_difference(Kind kind, const Query& query, int from, int to) {
+  const int a = reference::point_index(kind, from), b = reference::point_index(kind, to);
+  Vector<Polynomial4> difference;
+  for (int axis = 0; axis < 3; ++axis) {
+    const Value start = Value::difference(query.points[a][axis], query.points[b][axis]);
+    const Value end = Value::difference(query.points[a + 4][axis], query.points[b + 4][axis]);
+    difference[axis].c = {start, end - start};
+    difference[axis].size = 2;
+  }
+  return difference;
+}
+
+Motion<Polynomial4> moving_vectors(Kind kind, const Query& query) {
+  const auto d = [&](int from, int to) { return moving_difference(kind, query, from, to); };
+  if (kind == Kind::vertex_face) return {d(2, 1), d(3, 1), d(4, 1)};
+  return {d(2, 1), d(4, 3), d(3, 1)};
+}
+
+template <class Time>
+Motion<Value> exactly_at(const Motion<Polynomial4>& motion, const Time& t) {
+  Motion<Value> at;
+  for (int i = 0; i < 3; ++i)
+    for (int axis = 0; axis < 3; ++axis) at[i][axis] = motion[i][axis].at(t);
+  return at;
+}
+
+// The vectors over [low, low + width]: each component s + t b.
+Motion<Estimate> estimated_on(const Motion<Polynomial4>& motion, double low, double width) {
+  Motion<Estimate> on;
+  for (int i = 0; i < 3; ++i)
+    for (int axis = 0; axis < 3; ++axis) {
+      const Polynomial4& linear = motion[i][axis];
+      const Estimate start = Estimate::constant(linear.c[0]), slope = Estimate::constant(linear.c[1]);
+      Estimate& component = on[i][axis];
+      component = start + slope * Estimate{low, 0, 0, 0};
+      component.slope = slope.magnitude;
+      component.magnitude = std::fabs(component.value) + component.error + width * component.slope;
+    }
+  return on;
+}
+
+// A root of the cubic in (0, 1): exactly `low` when `exact`, otherwise the
+// only one in the open interval (low, high), where the cubic has the sign
+// `sign_after_low` just above low.
+struct Root {
+  double low = 0, high = 0;
+  bool exact = false;
+  int sign_after_low = 0;
+  // Past the doubles' grid (the interval (low, high) 2^-52 wide): the root
+  // lies in (low + fine_low, low + fine_low + fine_width), or is exactly
+  // low + fine_low when `exact`. fine_width 0: not in use.
+  double fine_low = 0, fine_width = 0;
+
+  bool fine() const { return fine_width > 0 || fine_low > 0; }
+  Value low_time() const { return Value(low) + Value(fine_low); }
+  double width() const { return exact ? 0 : (fine() ? fine_width : high - low); }
+};
+
+// Scaled Bernstein coefficients on a dyadic interval (positive multiples of
+// the true ones: the same signs, the same subdivision).
+using Bernstein = std::array<Value, 4>;
+
+int sign_variations(const Bernstein& b, int n) {
+  int variations = 0, previous = 0;
+  for (int i = 0; i <= n; ++i) {
+    const int sign = b[i].sign();
+    if (sign == 0) continue;
+    variations += previous != 0 && sign != previous;
+    previous = sign;
+  }
+  return variations;
+}
+
+int first_sign(const Bernstein& b, int n) {
+  for (int i = 0; i <= n; ++i)
+    if (b[i].sign() != 0) return b[i].sign();
+  return 0;
+}
+
+// The roots of the cubic in (0, 1), in increasing order: Descartes' rule on
+// Bernstein coefficients, halving with de Casteljau. nullopt when two roots
+// lie closer than 2^-40 (or one is multiple).
+std::optional<std::vector<Root>> isolate_cubic_roots(const Polynomial4& cubic) {
+  const int n = cubic.degree();
+  std::vector<Root> roots;
+  if (n < 1) return roots;
+  // b_k lcm / binomial(n, k): integer combinations of the coefficients.
+  constexpr int kBinomial[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
+  const int lcm = n == 3 ? 3 : n;  // of binomial(n, i) for i = 0..n
+  Bernstein whole;
+  for (int k = 0; k <= n; ++k)
+    for (int i = 0; i <= k; ++i)
+      whole[k] = whole[k] + cubic.c[i] * static_cast<double>(kBinomial[k][i] * lcm / kBinomial[n][i]);
+
+  struct Interval {
+    std::uint64_t numerator;  // [numerator, numerator + 1] 2^-depth
+    int depth;
+    Bernstein b;
+    bool exact_root;  // the single point numerator 2^-depth
+  };
+  std::vector<Interval> stack{{0, 0, whole, false}};
+  while (!stack.empty()) {
+    Interval interval = std::move(stack.back());
+    stack.pop_back();
+    const double low = std::ldexp(static_cast<double>(interval.numerator), -interval.depth);
+    if (interval.exact_root) {
+      roots.push_back({low, low, true, 0});
+      continue;
+    }
+    const int variations = sign_variations(interval.b, n);
+    if (variations == 0) continue;
+    if (variations == 1) {
+      const double high = std::ldexp(static_cast<double>(interval.numerator + 1), -interval.depth);
+      roots.push_back({low, high, false, first_sign(interval.b, n)});
+      continue;
+    }
+    if (interval.depth == kGridBits) return std::nullopt;
+    Bernstein left, right, work = interval.b;
+    left[0] = work[0];
+    right[n] = work[n];
+    for (int r = 1; r <= n; ++r) {
+      for (int i = 0; i + r <= n; ++i) work[i] = (work[i] + work[i + 1]) * 0.5;
+      left[r] = work[0];
+      right[n - r] = work[n - r];
+    }
+    const std::uint64_t middle = 2 * interval.numerator + 1;
+    const int depth = interval.depth + 1;
+    const bool middle_is_root = right[0].is_zero();
+    // Pushed right to left so that they come off in increasing order.
+    stack.push_back({middle, depth, right, false});
+    if (middle_is_root) stack.push_back({middle, depth, {}, true});
+    stack.push_back({2 * interval.numerator, depth, left, false});
+  }
+  return roots;
+}
+
+// A double near the root in (low, high) (Newton steps kept inside a
+// shrinking bracket, on the rounded coefficients): only a first guess.
+double approximate_root(const Polynomial4& cubic, const Root& root) {
+  const auto value = [&](double t) {
+    double sum = 0, slope = 0;
+    for (int i = cubic.size - 1; i >= 0; --i) {
+      slope = slope * t + sum;
+      sum = sum * t + cubic.c[i].estimate();
+    }
+    return std::pair{sum, slope};
+  };
+  double low = root.low, high = root.high, t = 0.5 * (low + high);
+  for (int step = 0; step < 80 && high - low > std::ldexp(0.25, -kDoubleGridBits); ++step) {
+    const auto [f, slope] = value(t);
+    if (f == 0) return t;
+    if ((f > 0) == (root.sign_after_low > 0)) low = t;
+    else high = t;
+    const double newton = t - f / slope;
+    t = newton > low && newton < high ? newton : 0.5 * (low + high);
+  }
+  return t;
+}
+
+// Narrows the root to a cell [k, k + 1] 2^-bits of a grid (or finds it
+// exactly on the grid): exact signs of the cubic at grid points, the first
+// two probes next to a Newton estimate, bisection after.
+void narrow_to_grid(const Polynomial4& cubic, Root& root, int bits) {
+  const double cell = std::ldexp(1.0, -bits);
+  if (root.exact || root.high - root.low <= cell) return;
+  auto low = static_cast<std::uint64_t>(std::ldexp(root.low, bits));
+  auto high = static_cast<std::uint64_t>(std::ldexp(root.high, bits));
+  const auto probe = [&](std::uint64_t k) {
+    const double t = std::ldexp(static_cast<double>(k), -bits);
+    const int sign = cubic.at(t).sign();
+    if (sign == 0) root = {t, t, true, 0};
+    else if (sign == root.sign_after_low) low = k;
+    else high = k;
+  };
+  const double guess = std::ldexp(approximate_root(cubic, root), bits);
+  const auto near = static_cast<std::uint64_t>(std::clamp(std::floor(guess), static_cast<double>(low + 1),
+                                                          static_cast<double>(high - 1)));
+  probe(near);
+  if (!root.exact && low == near && near + 1 < high) probe(near + 1);
+  while (!root.exact && high - low > 1) probe(low + (high - low) / 2);
+  if (!root.exact) {
+    root.low = std::ldexp(static_cast<double>(low), -bits);
+    root.high = std::ldexp(static_cast<double>(high), -bits);
+  }
+}
+
+// Narrows the root, already within a cell of the doubles' grid, to a cell
+// of 2^-bits, bits in (52, 100]: exact signs at low + j 2^-bits, bisection.
+void narrow_finer(const Polynomial4& cubic, Root& root, int bits) {
+  if (root.exact) return;
+  const double cell = std::ldexp(1.0, -bits);
+  if (!root.fine()) root.fine_width = root.high - root.low;
+  std::uint64_t low = static_cast<std::uint64_t>(std::ldexp(root.fine_low, bits));
+  std::uint64_t high = low + static_cast<std::uint64_t>(std::ldexp(root.fine_width, bits));
+  while (high - low > 1) {
+    const std::uint64_t middle = low + (high - low) / 2;
+    const double offset = std::ldexp(static_cast<double>(middle), -bits);  // exact: below 2^53 cells
+    const int sign = cubic.at(Value(root.low) + Value(offset)).sign();
+    if (sign == 0) {
+      root.exact = true;
+      root.fine_low = offset;
+      root.fine_width = 0;
+      return;
+    }
+    if (sign == root.sign_after_low) low = middle;
+    else high = middle;
+  }
+  root.fine_low = std::ldexp(static_cast<double>(low), -bits);
+  root.fine_width = cell;
+}
+
+// lc(b)^k a reduced modulo b: a remainder of a by b up to a nonzero factor,
+// without division, so exact in expansions.
+//
+// Repeated products lengthen the coefficients' exact values beyond what
+// the analysis above covers, so each operand is scaled by a power of two
+// (its roots unchanged) to a largest term near 1 and must have every term
+// above 2^-480: then no product falls below 2^-960 and stays exact.
+// Otherwise TooLong: integers decide.
+void scale_for_products(Polynomial4& p) {
+  double largest = 0;
+  for (int i = 0; i < p.size; ++i) largest = std::max(largest, p.c[i].largest_term());
+  if (largest == 0) return;
+  const double factor = std::ldexp(1.0, -std::ilogb(largest));
+  for (int i = 0; i < p.size; ++i) {
+    p.c[i] = p.c[i] * factor;
+    if (!p.c[i].is_zero() && p.c[i].smallest_term() < 0x1p-480) throw Value::TooLong{};
+  }
+}
+
+Polynomial4 pseudo_remainder(Polynomial4 a, Polynomial4 b) {
+  scale_for_products(a);
+  scale_for_products(b);
+  const int divisor_degree = b.degree();
+  for (int degree = a.degree(); degree >= divisor_degree; degree = a.degree()) {
+    const Value lead = a.c[degree];
+    const int shift = degree - divisor_degree;
+    for (int i = 0; i <= degree; ++i) {
+      a.c[i] = a.c[i] * b.c[divisor_degree];
+      if (i >= shift) a.c[i] = a.c[i] - lead * b.c[i - shift];
+    }  // the leading coefficient cancels exactly
+    scale_for_products(a);
+  }
+  return a;
+}
+
+// Whether p vanishes at the root in (low, high) of the cubic: exactly when
+// gcd(cubic, p) does. The gcd divides the cubic, so the root is its only
+// one in the interval and a simple one: its sign changes there. nullopt
+// when the gcd vanishes at an end.
+std::optional<bool> vanishes_at(const Polynomial4& cubic, const Polynomial4& p, const Root& root) {
+  Polynomial4 divisor = cubic, remainder = pseudo_remainder(p, cubic);
+  while (remainder.degree() >= 0) {
+    Polynomial4 next = pseudo_remainder(divisor, remainder);
+    divisor = std::move(remainder);
+    remainder = std::move(next);
+  }
+  if (divisor.degree() < 1) return false;
+  const int low = divisor.at(root.low).sign(), high = divisor.at(root.high).sign();
+  if (low == 0 || high == 0) return std::nullopt;
+  return low != high;
+}
+
+// Whether the primitives touch at the root; nullopt when the signs do not
+// settle it at this width. Each numerator's sign comes from its estimate,
+// else from its exact value at the interval's low end, each against how
+// far it can drift over the interval; given the cubic, a numerator still
+// unsettled is tested for a zero at the root (a contact on the boundary).
+std::optional<bool> touches_at(Kind kind, const Motion<Polynomial4>& motion, const Root& root,
+                               const Polynomial4* cubic = nullptr) {
+  constexpr double kMargin = 1 + 0x1p-30;  // covers the rounding of the bounds themselves
+  // The estimate is taken at low, a double; past the doubles' grid only the
+  // exact value at the root's fine interval is close enough.
+  const double estimate_width = root.fine() ? root.high - root.low : root.width();
+  const double exact_width = root.width();
+  const ContactNumerators<Estimate> estimates =
+      contact_numerators(kind, estimated_on(motion, root.low, estimate_width));
+  std::optional<ContactNumerators<Value>> exact;
+  std::optional<ContactNumerators<Polynomial4>> polynomials;
+  const auto zero_at_root = [&](int k) {
+    if (!cubic) return false;
+    try {
+      if (!polynomials) polynomials = contact_numerators(kind, motion);
+      return vanishes_at(*cubic, polynomials->values[k], root) == true;
+    } catch (const Value::TooLong&) {
+      return false;  // unknown: a finer grid may still settle the sign
+    }
+  };
+  std::array<std::optional<int>, 4> signs;
+  for (int k = 0; k < estimates.count; ++k) {
+    const Estimate& estimate = estimates.values[k];
+    const double drift = exact_width * estimate.slope;
+    if (!root.fine() && std::fabs(estimate.value) > (estimate.error + drift) * kMargin + 0x1p-1000) {
+      signs[k] = estimate.value > 0 ? 1 : -1;
+    } else if (root.fine() || root.exact || std::fabs(estimate.value) + estimate.error > drift * kMargin) {
+      // The exact value may beat the drift.
+      if (!exact) exact = contact_numerators(kind, exactly_at(motion, root.low_time()));
+      const Value& value = exact->values[k];
+      if (root.exact || std::fabs(value.estimate()) > drift * kMargin) signs[k] = value.sign();
+    }
+    // A negative numerator is nonzero, so n != 0 there, where the test
+    // applies: outside.
+    if (signs[k] && *signs[k] < 0) return false;
+  }
+  int positive = 0;
+  for (int k = 0; k < estimates.count; ++k) {
+    if (!signs[k] && zero_at_root(k)) signs[k] = 0;
+    if (!signs[k]) return std::nullopt;
+    positive += *signs[k] > 0;
+  }
+  if (positive > 0) return true;
+  // Every numerator zero: a contact where n != 0.
+  const Motion<Value> at = exactly_at(motion, root.low_time());
+  const Vector<Value> n = cross(at[0], at[1]);
+  if (root.exact) return dot(n, n).sign() > 0 ? std::optional(true) : std::nullopt;
+  if (cubic && vanishes_at(*cubic, dot(cross(motion[0], motion[1]), cross(motion[0], motion[1])), root) == false)
+    return true;
+  return std::nullopt;
+}
+
+std::optional<ExactOutcome> solve(Kind kind, const Query& query, bool need_toi, double tmax) {
+  const Motion<Polynomial4> motion = moving_vectors(kind, query);
+  const Polynomial4 cubic = coplanarity_cubic(motion);
+  if (cubic.degree() < 0) return std::nullopt;  // coplanar motion: not this stage's
+  const std::optional<std::vector<Root>> inner = isolate_cubic_roots(cubic);
+  if (!inner) return std::nullopt;
+  std::vector<Root> candidates;
+  if (cubic.c[0].is_zero()) candidates.push_back({0, 0, true, 0});
+  candidates.insert(candidates.end(), inner->begin(), inner->end());
+  if (cubic.at(1.0).is_zero()) candidates.push_back({1, 1, true, 0});
+
+  for (Root root : candidates) {
+    if (root.low >= tmax && !(root.exact && root.low == tmax)) break;
+    if (!root.exact && root.high > tmax) {  // which side of tmax is it on?
+      if (!on_time_grid(tmax)) return std::nullopt;
+      const int sign = cubic.at(tmax).sign();
+      if (sign == 0) root = {tmax, tmax, true, 0};
+      else if (sign == root.sign_after_low) break;  // after tmax, and so is every later one
+    }
+    // Signs too close to call on the isolating interval may settle on a
+    // narrower one.
+    std::optional<bool> touches = touches_at(kind, motion, root);
+    for (const int bits : {kGridBits, kDoubleGridBits}) {
+      if (touches) break;
+      narrow_to_grid(cubic, root, bits);
+      touches = touches_at(kind, motion, root, bits == kDoubleGridBits ? &cubic : nullptr);
+    }
+    for (const int bits : kFinerGridBits) {
+      if (touches) break;
+      narrow_finer(cubic, root, bits);
+      touches = touches_at(kind, motion, root);
+    }
+    if (!touches) return std::nullopt;
+    if (!*touches) continue;
+    if (need_toi) narrow_to_grid(cubic, root, kGridBits);
+    return ExactOutcome{true, root.low, false};
+  }
+  return ExactOutcome{};
+}
+
+std::optional<double> first_root(Kind kind, const Query& query, double low, double high) {
+  const Polynomial4 cubic = coplanarity_cubic(moving_vectors(kind, query));
+  const std::optional<std::vector<Root>> roots = isolate_cubic_roots(cubic);
+  if (!roots || !on_time_grid(low)) return std::nullopt;
+  for (Root root : *roots) {
+    if (root.high < low || (!root.exact && root.high == low)) continue;
+    if (root.low > high) break;
+    if (!root.exact && root.low < low) {  // the root may lie below low
+      const int sign = cubic.at(low).sign();
+      if (sign == 0) return low;
+      if (sign != root.sign_after_low) continue;
+    }
+    narrow_to_grid(cubic, root, kGridBits);
+    if (root.low > high) return std::nullopt;  // [low, high] held no root after all
+    return std::max(root.low, low);
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<ExactOutcome> solve_with_expansions(Kind kind, const Query& query, bool need_toi, double tmax) {
+  const std::optional<Query> scaled = normalized(query, kCoordinateFloor);
+  if (!scaled) return std::nullopt;
+  try {
+    return solve(kind, *scaled, need_toi, tmax);
+  } catch (const BoundedExpansion::TooLong&) {
+    return std::nullopt;
+  }
+}
+
+std::optional<double> first_root_with_expansions(Kind kind, const Query& query, double low, double high) {
+  const std::optional<Query> scaled = normalized(query, kCoordinateFloor);
+  if (!scaled) return std::nullopt;
+  try {
+    return first_root(kind, *scaled, low, high);
+  } catch (const BoundedExpansion::TooLong&) {
+    return std::nullopt;
+  }
+}
+
+}  // namespace batchccd::exact

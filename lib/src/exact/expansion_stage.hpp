@@ -1,0 +1,30 @@
+#pragma once
+
+#include <optional>
+
+#include "batchccd/query.hpp"
+#include "exact/exact_solver.hpp"
+
+// The exact stage's first try (docs/design.md §6a): the same decisions and
+// TOIs as exact integers give, computed with floating-point expansions,
+// which are exact too but cost microseconds where GMP costs hundreds. They
+// cover the generic case: the coplanarity cubic not identically zero, its
+// roots in (0, 1) simple and at least 2^-40 apart, and at each root the
+// signs of the inside test's polynomials nonzero, or read exactly where the
+// root is a dyadic of the 2^-40 grid. Anything else (coplanar motion,
+// multiple or clustered roots, a contact exactly on an edge or a corner,
+// coordinates spread over more than 2^60, a tmax off the 2^-100 grid)
+// answers nullopt, and the integers decide.
+namespace batchccd::exact {
+
+// What solve_exactly decides, bit for bit (hit, and the TOI on the same
+// 2^-40 grid), or nullopt.
+std::optional<ExactOutcome> solve_with_expansions(Kind kind, const Query& query, bool need_toi,
+                                                  double tmax);
+
+// What first_root_lower_bound answers, or nullopt: a lower bound within
+// 2^-40 of the first root of the coplanarity cubic in [low, high] (never
+// below low).
+std::optional<double> first_root_with_expansions(Kind kind, const Query& query, double low, double high);
+
+}  // namespace batchccd::exact

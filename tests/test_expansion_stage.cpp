@@ -1,0 +1,281 @@
+// The exact stage's floating-point expansions (docs/design.md §6a): the
+// arithmetic against GMP rationals, and the stage's decisions against the
+// same queries decided with integers alone, on families that reach every
+// branch: generic crossings, contacts exactly on an edge or at a corner
+// (the zero test), near misses a few ulps off them (the filter's margins),
+// contacts at t = 0 and t = 1, tmax, and scales 2^+-400.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <optional>
+#include <random>
+#include <vector>
+
+#include <gmpxx.h>
+
+#include "batchccd/batchccd.hpp"
+#include "exact/exact_solver.hpp"
+#include "exact/expansion.hpp"
+#include "exact/expansion_stage.hpp"
+#include "exact/first_root.hpp"
+
+namespace batchccd {
+namespace {
+
+using exact::BoundedExpansion;
+using exact::ExactOutcome;
+
+mpq_class rational(double value) { return mpq_class(value); }
+
+// --- The arithmetic -------------------------------------------------------
+
+double random_double(std::mt19937_64& random) {
+  std::uniform_real_distribution<double> mantissa(-1, 1);
+  std::uniform_int_distribution<int> exponent(-60, 60);
+  return std::ldexp(mantissa(random), exponent(random));
+}
+
+TEST(BoundedExpansion, SignsOfRandomExpressionsEqualRationalArithmetic) {
+  std::mt19937_64 random(1);
+  for (int trial = 0; trial < 20000; ++trial) {
+    const double a = random_double(random), b = random_double(random), c = random_double(random),
+                 d = random_double(random);
+    // a b - c d, and (a - b)(c - d) - (a c - a d - b c + b d): the second
+    // is exactly zero, which only exact arithmetic finds.
+    const BoundedExpansion x = BoundedExpansion(a) * BoundedExpansion(b) - BoundedExpansion(c) * BoundedExpansion(d);
+    const mpq_class exact_x = rational(a) * rational(b) - rational(c) * rational(d);
+    ASSERT_EQ(x.sign(), sgn(exact_x)) << a << " " << b << " " << c << " " << d;
+    ASSERT_NEAR(x.estimate(), exact_x.get_d(), 1e-15 * std::fabs(exact_x.get_d()));
+    const BoundedExpansion product = BoundedExpansion::difference(a, b) * BoundedExpansion::difference(c, d);
+    const BoundedExpansion expanded = BoundedExpansion(a) * BoundedExpansion(c) - BoundedExpansion(a) * BoundedExpansion(d) -
+                                      BoundedExpansion(b) * BoundedExpansion(c) + BoundedExpansion(b) * BoundedExpansion(d);
+    ASSERT_EQ((product - expanded).sign(), 0);
+    ASSERT_EQ(product.sign(), sgn((rational(a) - rational(b)) * (rational(c) - rational(d))));
+  }
+}
+
+TEST(BoundedExpansion, ScalingByADoubleIsExact) {
+  std::mt19937_64 random(2);
+  for (int trial = 0; trial < 20000; ++trial) {
+    const double a = random_double(random), b = random_double(random), c = random_double(random);
+    const BoundedExpansion scaled = BoundedExpansion::difference(a, b) * c;
+    const mpq_class exact = (rational(a) - rational(b)) * rational(c);
+    ASSERT_EQ(scaled.sign(), sgn(exact));
+    ASSERT_EQ((scaled - BoundedExpansion(a) * BoundedExpansion(c) + BoundedExpansion(b) * BoundedExpansion(c)).sign(), 0);
+  }
+}
+
+TEST(BoundedExpansion, AResultLongerThanItsCapacityThrowsInsteadOfRounding) {
+  // Terms 2^60 apart never merge into one double: 30 terms.
+  BoundedExpansion sum;
+  EXPECT_THROW(
+      {
+        for (int k = 0; k < 30; ++k) sum = sum + BoundedExpansion(std::ldexp(1.0, 900 - 60 * k));
+      },
+      BoundedExpansion::TooLong);
+}
+
+// --- The stage ------------------------------------------------------------
+
+Query make_query(const std::array<Vec3, 4>& start, const std::array<Vec3, 4>& end) {
+  Query query;
+  for (int i = 0; i < 4; ++i) {
+    query.points[i] = start[i];
+    query.points[i + 4] = end[i];
+  }
+  return query;
+}
+
+struct Tally {
+  int decided = 0, hits = 0;  // by the expansions, with the TOI asked for
+};
+
+// The expansion stage, where it answers, answers as integers do: the same
+// decision, and a TOI within 2^-40 of theirs (both are lower bounds of the
+// contact within 2^-40 of it); without the TOI asked for, a lower bound.
+void expect_as_integers(Kind kind, const Query& query, double tmax, Tally& tally) {
+  const ExactOutcome integers = exact::solve_with_integers(kind, query, true, tmax);
+  ASSERT_FALSE(integers.bound_reached);
+  for (const bool need_toi : {true, false}) {
+    const std::optional<ExactOutcome> expansions = exact::solve_with_expansions(kind, query, need_toi, tmax);
+    if (!expansions) continue;
+    ASSERT_EQ(expansions->hit, integers.hit) << to_string(kind) << " tmax " << tmax;
+    if (need_toi) {
+      ++tally.decided;
+      tally.hits += integers.hit;
+    }
+    if (!integers.hit) continue;
+    EXPECT_LE(expansions->toi, tmax);
+    EXPECT_LE(expansions->toi, integers.toi + 0x1p-40) << to_string(kind);
+    if (need_toi) {
+      EXPECT_GE(expansions->toi, integers.toi - 0x1p-40) << to_string(kind);
+    }
+  }
+}
+
+// Random points on a 2^-8 grid: contacts whose parameters are exact
+// dyadics (on an edge, at a corner) come often, and so do exact roots.
+Vec3 grid_point(std::mt19937_64& random) {
+  std::uniform_int_distribution<int> coordinate(-64, 64);
+  return Vec3(coordinate(random), coordinate(random), coordinate(random)) / 256.0;
+}
+
+Query random_grid_query(std::mt19937_64& random) {
+  std::array<Vec3, 4> start, end;
+  for (int i = 0; i < 4; ++i) {
+    start[i] = grid_point(random);
+    end[i] = grid_point(random);
+  }
+  return make_query(start, end);
+}
+
+// A contact placed exactly on an edge or at a corner at t = 1/q, q in
+// {2, 3, 5}: the vertex (or edge b's first point) meets edge a at parameter
+// s in {0, 1/2, 1}. Every coordinate stays exact; for q = 3 and 5 the root
+// is no dyadic, and only the zero test can tell the contact is on the
+// boundary.
+Query boundary_contact(Kind kind, std::mt19937_64& random) {
+  std::uniform_int_distribution<int> pick(0, 2);
+  const double s = pick(random) / 2.0, q = std::array{2.0, 3.0, 5.0}[pick(random)];
+  std::array<Vec3, 4> start, end;
+  for (int i = 0; i < 4; ++i) {
+    start[i] = grid_point(random);
+    end[i] = grid_point(random);
+  }
+  const int a0 = kind == Kind::vertex_face ? 1 : 0, a1 = a0 + 1;  // file order: VF p, a, b, c
+  const int mover = kind == Kind::vertex_face ? 0 : 2;
+  // q times the meeting point, then the mover's end that reaches it at 1/q.
+  const Vec3 meet_q = (1 - s) * ((q - 1) * start[a0] + end[a0]) + s * ((q - 1) * start[a1] + end[a1]);
+  end[mover] = meet_q - (q - 1) * start[mover];
+  return make_query(start, end);
+}
+
+// One coordinate moved by a few ulps: a near miss or near hit beside an
+// exact boundary contact, where the filter's bounds decide.
+Query jittered(Query query, std::mt19937_64& random) {
+  std::uniform_int_distribution<int> point(0, 7), axis(0, 2), ulps(-3, 3);
+  double& value = query.points[point(random)][axis(random)];
+  for (int k = ulps(random); k != 0; k += k > 0 ? -1 : 1)
+    value = std::nextafter(value, k > 0 ? 1e300 : -1e300);
+  return query;
+}
+
+Query scaled(Query query, int exponent) {
+  for (Vec3& point : query.points) point = point * std::ldexp(1.0, exponent);
+  return query;
+}
+
+TEST(ExpansionStage, DecidesAsIntegersOnRandomGridQueries) {
+  std::mt19937_64 random(3);
+  Tally tally;
+  for (int trial = 0; trial < 1500; ++trial)
+    for (const Kind kind : {Kind::vertex_face, Kind::edge_edge})
+      expect_as_integers(kind, random_grid_query(random), 1.0, tally);
+  EXPECT_GT(tally.hits, 50);  // the family does reach contacts
+}
+
+TEST(ExpansionStage, DecidesAsIntegersOnContactsOnAnEdgeOrACornerAndBesideThem) {
+  std::mt19937_64 random(4);
+  constexpr int kQueries = 1200;
+  Tally exact_contacts, near_contacts;
+  for (int trial = 0; trial < kQueries / 2; ++trial)
+    for (const Kind kind : {Kind::vertex_face, Kind::edge_edge}) {
+      const Query query = boundary_contact(kind, random);
+      expect_as_integers(kind, query, 1.0, exact_contacts);
+      expect_as_integers(kind, jittered(query, random), 1.0, near_contacts);
+    }
+  // Every query of the first family is a contact; the zero test settles
+  // most without integers, and the grids past the doubles' most of the
+  // second.
+  EXPECT_EQ(exact_contacts.hits, exact_contacts.decided);
+  EXPECT_GT(exact_contacts.decided, kQueries * 3 / 4);
+  EXPECT_GT(near_contacts.decided, kQueries * 2 / 3);
+  std::printf("[ record   ] boundary contacts: %d of %d decided by expansions; a few ulps off them: %d (%d hits)\n",
+              exact_contacts.decided, kQueries, near_contacts.decided, near_contacts.hits);
+}
+
+TEST(ExpansionStage, DecidesAsIntegersWithTmaxAndAtEveryScale) {
+  std::mt19937_64 random(5);
+  Tally tally;
+  std::uniform_real_distribution<double> any_tmax(0.01, 1.0);
+  for (int trial = 0; trial < 400; ++trial)
+    for (const Kind kind : {Kind::vertex_face, Kind::edge_edge}) {
+      const Query query = boundary_contact(kind, random);
+      for (const double tmax : {0.5, 0.25, 0.75, any_tmax(random)})
+        expect_as_integers(kind, query, tmax, tally);
+      for (const int exponent : {-400, 400}) expect_as_integers(kind, scaled(query, exponent), 1.0, tally);
+    }
+  EXPECT_GT(tally.hits, 200);
+}
+
+TEST(ExpansionStage, SettlesAGenericCrossingAndAnEdgeContactAndLeavesCoplanarMotionToIntegers) {
+  // A vertex falling through a triangle's interior at t = 1/2.
+  const std::array<Vec3, 4> face{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 0)};
+  Query through = make_query({Vec3(0.25, 0.25, 1), face[0], face[1], face[2]},
+                             {Vec3(0.25, 0.25, -1), face[0], face[1], face[2]});
+  const std::optional<ExactOutcome> crossing = exact::solve_with_expansions(Kind::vertex_face, through, true, 1.0);
+  ASSERT_TRUE(crossing);
+  EXPECT_TRUE(crossing->hit);
+  EXPECT_EQ(crossing->toi, 0.5);
+  // Edges crossing at an endpoint of one, at t = 1/3: a root no dyadic
+  // equals, where a parameter is exactly 1 (the zero test).
+  const Query endpoint = make_query({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, -1, 1), Vec3(1, 1, 1)},
+                                    {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, -1, -2), Vec3(1, 1, -2)});
+  const std::optional<ExactOutcome> at_endpoint = exact::solve_with_expansions(Kind::edge_edge, endpoint, true, 1.0);
+  ASSERT_TRUE(at_endpoint);
+  EXPECT_TRUE(at_endpoint->hit);
+  EXPECT_LE(at_endpoint->toi, 1.0 / 3);
+  EXPECT_GE(at_endpoint->toi, 1.0 / 3 - 0x1p-40);
+  // Motion in the plane z = 0: the cubic vanishes, the stage declines.
+  const Query planar = make_query({Vec3(0.25, 0.25, 0), face[0], face[1], face[2]},
+                                  {Vec3(2, 2, 0), face[0], face[1], face[2]});
+  EXPECT_FALSE(exact::solve_with_expansions(Kind::vertex_face, planar, true, 1.0));
+  // Coordinates spread over more than 2^60 are left to integers too.
+  Query spread = through;
+  spread.points[0].x() = 0x1p-70;
+  EXPECT_FALSE(exact::solve_with_expansions(Kind::vertex_face, spread, true, 1.0));
+}
+
+TEST(ExpansionStage, LeavesToIntegersWhatWouldUnderflowItsZeroTest) {
+  // From the stiff and extreme suite (fast motion, 1e3): the vertex passes
+  // 1.8e-14 of the face's size outside a corner. The zero test's remainders
+  // outgrow the double range here; computed regardless, they "found" a
+  // zero and a contact.
+  const std::array<double, 24> hex{
+      -0x1.1a9693762d7f6p+8, -0x1.797276b42be0ep+9, 0x1.cf11389d0edbdp+4, 0x1.cc8a113451b7ap-1,
+      0x1.3a1707c165e1ap-1,  0x1.383f50eeb959cp-1,  -0x1.7d93db032f46p-4, -0x1.ed2fd9aeef948p-3,
+      0x1.34a9c2b12bb6ap-1,  0x1.d3433a917ab84p-2,  0x1.a1a5bdd8b929p-3,  0x1.420c7132dd4afp+0,
+      0x1.f721075db8a6cp+8,  -0x1.d702aa6b02f9p+5,  0x1.979caa03f1a6p+8,  0x1.4c2cca3c6c18ap+8,
+      -0x1.013d057d8c19cp+9, 0x1.a8b279c6e7b43p+8,  0x1.4b2eabf621bcdp+8, -0x1.01aa5e3d17623p+9,
+      0x1.a8b0aeffc8ed6p+8,  0x1.4bbb5602764e7p+8,  -0x1.017170e39ee7ap+9, 0x1.a958668fa334dp+8};
+  Query query;
+  for (int i = 0; i < 8; ++i) query.points[i] = Vec3(hex[3 * i], hex[3 * i + 1], hex[3 * i + 2]);
+  EXPECT_FALSE(exact::solve_with_integers(Kind::vertex_face, query, true, 1.0).hit);
+  const std::optional<ExactOutcome> expansions = exact::solve_with_expansions(Kind::vertex_face, query, true, 1.0);
+  if (expansions) {
+    EXPECT_FALSE(expansions->hit);
+  }
+}
+
+TEST(ExpansionStage, FirstRootAsIntegersLocateIt) {
+  std::mt19937_64 random(6);
+  int compared = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Query query = random_grid_query(random);
+    for (const Kind kind : {Kind::vertex_face, Kind::edge_edge})
+      for (int k = 0; k < 8; ++k) {  // [k, k + 1] / 8: a bracket as the search hands over
+        const double low = k / 8.0, high = (k + 1) / 8.0;
+        const std::optional<double> integers = exact::first_root_with_integers(kind, query, low, high);
+        const std::optional<double> expansions = exact::first_root_with_expansions(kind, query, low, high);
+        // A root exactly at low: the integers look in the open interval.
+        if (!integers || !expansions || *expansions == low) continue;
+        ++compared;
+        EXPECT_GE(*expansions, low);
+        EXPECT_LE(std::fabs(*expansions - *integers), 0x1p-40);
+      }
+  }
+  EXPECT_GT(compared, 500);
+}
+
+}  // namespace
+}  // namespace batchccd
