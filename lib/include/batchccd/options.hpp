@@ -34,10 +34,11 @@ enum class Mode {
   // rationals): no false positive and no false negative on any finite input.
   // The certified path runs first; every query whose decision it leaves
   // uncertain (a near miss within `tolerance`, a degenerate configuration,
-  // `exact_stage_iterations` exhausted) is settled with exact integer
-  // arithmetic (GMP) and counted in Counters::exact_escalations. Each such
-  // query costs a bounded amount of work (loops bounded by the degrees and
-  // bit sizes of its polynomials).
+  // `exact_stage_iterations` exhausted) is settled with exact arithmetic
+  // (floating-point expansions where they suffice, GMP integers otherwise)
+  // and counted in Counters::exact_escalations. Each such query costs a
+  // bounded amount of work (loops bounded by the degrees and bit sizes of
+  // its polynomials).
   // TOI: never after the first contact, and less than 1e-12 (2^-40) of the
   // step before it. With need_toi = false, as there: some lower bound.
   // With min_distance > 0 the contact condition is a distance, not a root:
@@ -131,7 +132,7 @@ struct Options {
   // guessed: this only trades floating-point search for the bounded exact
   // stage; zero or negative sends every query the solver cannot settle at
   // once there).
-  std::int64_t exact_stage_iterations = 1 << 10;
+  std::int64_t exact_stage_iterations = 32;
 
   // Batch calls: time each query's evaluation and report the slowest in
   // Counters::max_query_seconds, the worst single-query latency on the
