@@ -52,10 +52,10 @@ A query file's kind comes from its path (the last component naming one):
 "point-point" or a "vv" word is vv; --kind gives it otherwise.
 
 --min-distance D, --tmax T: a contact is the primitives coming within distance
-D of each other (in the data's length units; default 0, touching) at some t in
-[0, T] (T in (0, 1], default 1; a contact after T is not a hit). D >= 0 and
-finite. Without --min-distance, D is the separation an input's data states
-(the one number of ms.txt beside a query file or in a scene directory), else 0.
+D of each other (in the data's length units) at some t in [0, T] (T in (0, 1],
+default 1; a contact after T is not a hit). D >= 0 and finite; without
+--min-distance, the separation an input's data states (the one number of
+ms.txt beside a query file or in a scene directory), else 0 (touching).
 
 Truth (a truth column, *_truth.txt) is labelled for the separation its data
 states (ms.txt; 0 without) and T = 1; --truth FILE for the run's own D and T.
@@ -75,11 +75,12 @@ Modes:
 
 JSON fields (--json, one object per input and kind): input, kind, mode,
 min_distance, tmax, isa (the one used), threads, queries, hits, positives,
-false_positives, false_negatives (null without truth or with truth labelled for
-another separation or tmax), truth_min_distance, truth_tmax, culled, seconds (narrow
-phase alone, reading excluded), queries_per_second, exact_escalations (queries
-whose decision or TOI needed exact arithmetic), max_query_seconds (wall-clock
-time of the slowest single query, with --time-queries; null without).
+false_positives, false_negatives (null without truth or with truth labelled
+for another separation or tmax), truth_min_distance, truth_tmax, culled,
+seconds (narrow phase alone, reading excluded), queries_per_second,
+exact_escalations (queries whose decision or TOI needed exact arithmetic),
+max_query_seconds (wall-clock time of the slowest single query, with
+--time-queries; null without).
 
 --repeat N: each input's narrow phase N times into one result, as a frame loop
 runs it; seconds is the best of the N (reading, first touch and allocation

@@ -73,11 +73,11 @@ std::optional<double> stated_separation(const fs::path& directory) {
   std::ostringstream text;
   text << in.rdbuf();
   if (!in) throw InputError(file.string(), 0, "cannot be read");
-  std::string number = text.str();
-  const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; };
-  while (!number.empty() && blank(number.back())) number.pop_back();
-  const std::size_t first = number.find_first_not_of(" \t\n\r");
-  number.erase(0, first == std::string::npos ? number.size() : first);
+  const std::string content = text.str();
+  constexpr const char* blanks = " \t\r\n";
+  const std::size_t first = content.find_first_not_of(blanks);
+  const std::string number =
+      first == std::string::npos ? "" : content.substr(first, content.find_last_not_of(blanks) - first + 1);
   double separation = 0;
   const auto [end, error] = std::from_chars(number.data(), number.data() + number.size(), separation);
   if (error != std::errc() || end != number.data() + number.size() || !(separation >= 0) ||
@@ -86,6 +86,10 @@ std::optional<double> stated_separation(const fs::path& directory) {
                      "must hold one separation, a number >= 0 and finite, not '" + number + "'");
   return separation;
 }
+
+// What a data set's truth is labelled for: the separation it states, else
+// touching; the whole step.
+TruthLabels data_labels(std::optional<double> stated_separation) { return {stated_separation.value_or(0), 1}; }
 
 // The call's options for an input whose data states `stated_separation`.
 Options options_for_call(const RunSettings& settings, std::optional<double> stated_separation, bool truth_known) {
@@ -181,7 +185,7 @@ std::vector<InputReport> run_query_file(const fs::path& file, const RunSettings&
   const Options options = options_for_call(settings, stated, queries.truth.has_value());
   // --truth is given for this very run; a truth column is the data's.
   const TruthLabels labelled_for =
-      settings.truth ? TruthLabels{options.min_distance, options.tmax} : TruthLabels{stated.value_or(0), 1};
+      settings.truth ? TruthLabels{options.min_distance, options.tmax} : data_labels(stated);
   TimedResult timed_result = timed(settings.repeat, [&](BatchResult& out) {
     batch_ccd(kind, queries.queries, options, out);
   });
@@ -218,7 +222,7 @@ InputReport run_scene_kind(const Scene& scene, Kind kind, const RunSettings& set
   TimedResult timed_result =
       timed(settings.repeat, [&](BatchResult& out) { mesh_ccd(mesh, scene.candidates, options, out); });
   return make_report(scene.path, kind, list.count, std::move(timed_result), options,
-                     {list.truth, {stated.value_or(0), 1}});
+                     {list.truth, data_labels(stated)});
 }
 
 // vf and ee always (an absent list is an empty one, as ever); ve and vv when
