@@ -34,8 +34,8 @@ class CMakeBuild(build_ext):
             self.configure(build_dir)
         elif not (build_dir / "CMakeCache.txt").exists():
             sys.exit(f"BATCHCCD_CMAKE_BUILD_DIR={given}: no configured CMake build there")
-        jobs = str(self.parallel or os.cpu_count() or 1)
-        subprocess.run(["cmake", "--build", str(build_dir), "--target", MODULE_TARGET, "-j", jobs], check=True)
+        # Ninja's own parallelism, or CMAKE_BUILD_PARALLEL_LEVEL's.
+        subprocess.run(["cmake", "--build", str(build_dir), "--target", MODULE_TARGET], check=True)
         built = build_dir / "python" / "batchccd" / ("_batchccd" + sysconfig.get_config_var("EXT_SUFFIX"))
         if not built.exists():
             sys.exit(f"CMake built no {built.name} in {built.parent}: the module is for another interpreter "
