@@ -8,6 +8,8 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -50,9 +52,17 @@ A query file's kind comes from its path (the last component naming one):
 "point-point" or a "vv" word is vv; --kind gives it otherwise.
 
 --min-distance D, --tmax T: a contact is the primitives coming within distance
-D of each other (in the data's length units; default 0, touching) at some t in
-[0, T] (T in (0, 1], default 1; a contact after T is not a hit). D >= 0 and
-finite. Truth files must be labelled for the same D and T.
+D of each other (in the data's length units) at some t in [0, T] (T in (0, 1],
+default 1; a contact after T is not a hit). D >= 0 and finite; without
+--min-distance, the separation an input's data states (the one number of
+ms.txt beside a query file or in a scene directory), else 0 (touching).
+
+Truth (a truth column, *_truth.txt) is labelled for the separation its data
+states (ms.txt; 0 without) and T = 1; --truth FILE for the run's own D and T.
+Truth labelled for another D or T is not scored: positives, false positives
+and false negatives stay blank (null in JSON), and a note under the table says
+which inputs and why. The JSON fields truth_min_distance and truth_tmax say what
+an input's truth is labelled for (null without truth).
 
 --truth FILE: ground truth for a single query file, replacing its truth
 column: a JSON array of booleans, or one 0/1 a line.
@@ -65,10 +75,12 @@ Modes:
 
 JSON fields (--json, one object per input and kind): input, kind, mode,
 min_distance, tmax, isa (the one used), threads, queries, hits, positives,
-false_positives, false_negatives (null without truth), culled, seconds (narrow
-phase alone, reading excluded), queries_per_second, exact_escalations (queries
-whose decision or TOI needed exact arithmetic), max_query_seconds (wall-clock
-time of the slowest single query, with --time-queries; null without).
+false_positives, false_negatives (null without truth or with truth labelled
+for another separation or tmax), truth_min_distance, truth_tmax, culled,
+seconds (narrow phase alone, reading excluded), queries_per_second,
+exact_escalations (queries whose decision or TOI needed exact arithmetic),
+max_query_seconds (wall-clock time of the slowest single query, with
+--time-queries; null without).
 
 --repeat N: each input's narrow phase N times into one result, as a frame loop
 runs it; seconds is the best of the N (reading, first touch and allocation
@@ -89,37 +101,36 @@ struct RunCommand {
   int repeat = 1;
   bool json = false;
   bool time_queries = false;
-  double min_distance = 0;
+  std::optional<double> min_distance;  // without it, each input's stated separation (run.hpp)
   double tmax = 1;
 };
 
-// Options::validate's message without its "batchccd: " prefix: the command
-// line prefixes its own.
-std::string validation_message(const std::invalid_argument& error) {
-  std::string message = error.what();
-  const std::string prefix = "batchccd: ";
-  if (message.starts_with(prefix)) message.erase(0, prefix.size());
+// The library names options as C++ does; the command line names its flags.
+// Every library message about the options passes through here.
+constexpr std::pair<std::string_view, std::string_view> command_line_names[] = {
+    {"batchccd: ", ""},  // the tool prefixes its own
+    {"Options::min_distance", "--min-distance"},
+    {"Options::tmax", "--tmax"},
+};
+
+std::string in_command_line_names(std::string message) {
+  for (const auto& [library_name, flag] : command_line_names)
+    for (std::size_t at = message.find(library_name); at != std::string::npos;
+         at = message.find(library_name, at + flag.size()))
+      message.replace(at, library_name.size(), flag);
   return message;
 }
 
-// A number for one Options field, refused with batchccd::validate's own
-// message, so the tool and the library say the same.
-CLI::Validator options_number(double batchccd::Options::*field, const char* description) {
+// A number, said plainly when it is not one; its range is validate()'s to
+// judge (run_command), so that the tool and the library agree.
+CLI::Validator number(const char* description) {
   return CLI::Validator(
-      [field](std::string& text) -> std::string {
+      [](std::string& text) -> std::string {
         double value = 0;
         const char* const end = text.data() + text.size();
         const auto [stop, error] = std::from_chars(text.data(), end, value);
-        if (error == std::errc::result_out_of_range)
-          return "'" + text + "' is out of the range of a double";
+        if (error == std::errc::result_out_of_range) return "'" + text + "' is out of the range of a double";
         if (error != std::errc() || stop != end) return "needs a number, not '" + text + "'";
-        batchccd::Options options;
-        options.*field = value;
-        try {
-          batchccd::validate(options);
-        } catch (const std::invalid_argument& refused) {
-          return validation_message(refused);
-        }
         return {};
       },
       description);
@@ -151,10 +162,10 @@ void add_run_command(CLI::App& app, RunCommand& command) {
   run->add_option("--mode", command.mode, "how decisions are made (below)")
       ->check(mode_name);
   run->add_option("--min-distance", command.min_distance,
-                  "separation that counts as a contact (below; default 0)")
-      ->check(options_number(&batchccd::Options::min_distance, "D>=0"));
+                  "separation that counts as a contact (below; default: the data's, else 0)")
+      ->check(number("D>=0"));
   run->add_option("--tmax", command.tmax, "end of the time window (below; default 1)")
-      ->check(options_number(&batchccd::Options::tmax, "T in (0,1]"));
+      ->check(number("T in (0,1]"));
   run->add_option("--threads", command.threads, "worker threads (default: all)")
       ->check(positive_integer);
   run->add_option("--isa", command.isa, "instruction set (auto: the best available)")
@@ -189,8 +200,16 @@ int run_command(const RunCommand& command) {
   settings.options.mode = *batchccd::mode_from_string(command.mode);
   settings.options.isa = *batchccd::isa_from_string(command.isa);
   settings.options.threads = command.threads;
-  settings.options.min_distance = command.min_distance;
+  settings.options.min_distance = command.min_distance.value_or(0);
+  settings.min_distance_from_data = !command.min_distance;
   settings.options.tmax = command.tmax;
+  try {
+    batchccd::validate(settings.options);
+  } catch (const std::invalid_argument& error) {
+    std::cerr << "batchccd run: " << in_command_line_names(error.what())
+              << "\nRun 'batchccd run --help' for usage.\n";
+    return exit_usage_error;
+  }
   settings.keep_results = !command.out.empty();
   settings.repeat = command.repeat;
   settings.time_queries = command.time_queries;

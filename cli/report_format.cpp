@@ -30,6 +30,10 @@ nlohmann::ordered_json json_object(const InputReport& report) {
   object["positives"] = count_or_null(report.positives);
   object["false_positives"] = count_or_null(report.false_positives);
   object["false_negatives"] = count_or_null(report.false_negatives);
+  object["truth_min_distance"] =
+      report.truth_labels ? nlohmann::ordered_json(report.truth_labels->min_distance) : nlohmann::ordered_json();
+  object["truth_tmax"] =
+      report.truth_labels ? nlohmann::ordered_json(report.truth_labels->tmax) : nlohmann::ordered_json();
   object["culled"] = report.culled;
   object["seconds"] = report.seconds;
   object["queries_per_second"] = report.queries_per_second();
@@ -49,6 +53,9 @@ namespace {
 
 using Row = std::vector<std::string>;
 
+// min_distance only when it differs between rows (inputs that state their
+// own separation); the settings line says it otherwise.
+constexpr TableColumn min_distance_column{"min_distance", true};
 constexpr TableColumn table_columns[] = {
     {"input", false},     {"kind", false},      {"queries", true},
     {"hits", true},       {"positives", true},  {"false_pos", true},
@@ -106,20 +113,50 @@ Row totals_row(const std::vector<InputReport>& reports) {
   return row;
 }
 
+// Why an input's truth columns are blank: its truth is labelled for
+// another separation or time window than the call's.
+std::string unscored_truth_note(const InputReport& report) {
+  const TruthLabels& labels = *report.truth_labels;
+  return "note: " + report.input + " (" + to_string(report.kind) + "): truth labelled for min_distance " +
+         round_trip_decimal(labels.min_distance) + ", tmax " + round_trip_decimal(labels.tmax) +
+         "; this run asked min_distance " + round_trip_decimal(report.min_distance) + ", tmax " +
+         round_trip_decimal(report.tmax) + ": not scored";
+}
+
 }  // namespace
 
 void print_table(std::ostream& out, const std::vector<InputReport>& reports) {
   if (reports.empty()) return;
-  // Mode, separation, time window, instruction set and threads are the same
-  // for every row of a run.
+  // Mode, time window, instruction set and threads are the same for every
+  // row of a run; the separation too unless inputs state their own.
   const InputReport& first = reports.front();
-  out << "mode " << to_string(first.mode) << ", min_distance " << round_trip_decimal(first.min_distance)
+  const bool one_min_distance = std::all_of(reports.begin(), reports.end(), [&](const InputReport& report) {
+    return report.min_distance == first.min_distance;
+  });
+  out << "mode " << to_string(first.mode) << ", min_distance "
+      << (one_min_distance ? round_trip_decimal(first.min_distance) : "per input (column min_distance)")
       << ", tmax " << round_trip_decimal(first.tmax) << ", isa " << to_string(first.isa) << ", threads "
       << first.threads << '\n';
+  std::vector<TableColumn> columns(std::begin(table_columns), std::end(table_columns));
   std::vector<Row> rows;
   for (const InputReport& report : reports) rows.push_back(table_row(report));
   rows.push_back(totals_row(reports));
-  print_aligned(out, table_columns, rows);
+  if (!one_min_distance) {
+    columns.insert(columns.begin() + 2, min_distance_column);
+    for (std::size_t i = 0; i < reports.size(); ++i)
+      rows[i].insert(rows[i].begin() + 2, round_trip_decimal(reports[i].min_distance));
+    rows.back().insert(rows.back().begin() + 2, "");
+  }
+  print_aligned(out, columns, rows);
+  bool any_unscored = false;
+  for (const InputReport& report : reports)
+    if (report.truth_not_scored()) {
+      out << unscored_truth_note(report) << '\n';
+      any_unscored = true;
+    }
+  if (any_unscored)
+    out << "(positives, false_pos and false_neg are blank there: truth labelled for another separation or "
+           "time window would count right answers as wrong)\n";
 }
 
 // ---- results file ---------------------------------------------------------

@@ -1,12 +1,16 @@
 #include "run.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
+#include <cmath>
 #include <exception>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <ostream>
 #include <span>
+#include <sstream>
 #include <stdexcept>
 #include <system_error>
 #include <thread>
@@ -19,6 +23,8 @@ namespace fs = std::filesystem;
 double InputReport::queries_per_second() const {
   return seconds > 0 ? static_cast<double>(queries) / seconds : 0.0;
 }
+
+bool InputReport::truth_not_scored() const { return truth_labels && !false_negatives; }
 
 namespace {
 
@@ -58,8 +64,37 @@ int threads_asked(const Options& options) {
   return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
-Options options_for_call(const RunSettings& settings, bool truth_known) {
+// The separation `directory`'s data states, if it states one.
+std::optional<double> stated_separation(const fs::path& directory) {
+  const fs::path file = directory / stated_separation_file;
+  std::error_code unreadable;
+  if (!fs::is_regular_file(file, unreadable)) return std::nullopt;
+  std::ifstream in(file);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) throw InputError(file.string(), 0, "cannot be read");
+  const std::string content = text.str();
+  constexpr const char* blanks = " \t\r\n";
+  const std::size_t first = content.find_first_not_of(blanks);
+  const std::string number =
+      first == std::string::npos ? "" : content.substr(first, content.find_last_not_of(blanks) - first + 1);
+  double separation = 0;
+  const auto [end, error] = std::from_chars(number.data(), number.data() + number.size(), separation);
+  if (error != std::errc() || end != number.data() + number.size() || !(separation >= 0) ||
+      !std::isfinite(separation))
+    throw InputError(file.string(), 1,
+                     "must hold one separation, a number >= 0 and finite, not '" + number + "'");
+  return separation;
+}
+
+// What a data set's truth is labelled for: the separation it states, else
+// touching; the whole step.
+TruthLabels data_labels(std::optional<double> stated_separation) { return {stated_separation.value_or(0), 1}; }
+
+// The call's options for an input whose data states `stated_separation`.
+Options options_for_call(const RunSettings& settings, std::optional<double> stated_separation, bool truth_known) {
   Options options = settings.options;
+  if (settings.min_distance_from_data) options.min_distance = stated_separation.value_or(options.min_distance);
   // Per-query results cost memory: ask for them only when they are used.
   options.per_candidate_results = settings.keep_results || truth_known;
   options.time_queries = settings.time_queries;
@@ -96,9 +131,14 @@ void compare_with_truth(const std::vector<bool>& truth, InputReport& report) {
   report.false_negatives = false_negatives;
 }
 
+// Ground truth and what it is labelled for.
+struct Truth {
+  const std::optional<std::vector<bool>>& per_query;
+  TruthLabels labelled_for;
+};
+
 InputReport make_report(std::string input, Kind kind, std::size_t query_count,
-                        TimedResult timed_result, const Options& options,
-                        const std::optional<std::vector<bool>>& truth) {
+                        TimedResult timed_result, const Options& options, const Truth& truth) {
   InputReport report;
   report.input = std::move(input);
   report.kind = kind;
@@ -119,7 +159,11 @@ InputReport make_report(std::string input, Kind kind, std::size_t query_count,
                              std::to_string(report.results.size()) + " results for " +
                              std::to_string(query_count) + " queries");
   }
-  if (truth) compare_with_truth(*truth, report);
+  if (truth.per_query) {
+    report.truth_labels = truth.labelled_for;
+    if (truth.labelled_for.min_distance == options.min_distance && truth.labelled_for.tmax == options.tmax)
+      compare_with_truth(*truth.per_query, report);
+  }
   return report;
 }
 
@@ -136,13 +180,17 @@ std::vector<bool> read_truth_for(const fs::path& truth_file, const QueryFile& qu
 std::vector<InputReport> run_query_file(const fs::path& file, const RunSettings& settings) {
   const Kind kind = kind_of_query_file(file, settings.kind);
   QueryFile queries = read_query_csv(file, kind);
+  const std::optional<double> stated = stated_separation(file.parent_path());
   if (settings.truth) queries.truth = read_truth_for(*settings.truth, queries);
-  const Options options = options_for_call(settings, queries.truth.has_value());
+  const Options options = options_for_call(settings, stated, queries.truth.has_value());
+  // --truth is given for this very run; a truth column is the data's.
+  const TruthLabels labelled_for =
+      settings.truth ? TruthLabels{options.min_distance, options.tmax} : data_labels(stated);
   TimedResult timed_result = timed(settings.repeat, [&](BatchResult& out) {
     batch_ccd(kind, queries.queries, options, out);
   });
   return {make_report(file.string(), kind, queries.queries.size(), std::move(timed_result),
-                      options, queries.truth)};
+                      options, {queries.truth, labelled_for})};
 }
 
 // A scene's candidate list and truth of one kind.
@@ -161,10 +209,11 @@ SceneList scene_list(const Scene& scene, Kind kind) {
   return {scene.candidates.vertex_vertex.size(), scene.vertex_vertex_truth};
 }
 
-InputReport run_scene_kind(const Scene& scene, Kind kind, const RunSettings& settings) {
+InputReport run_scene_kind(const Scene& scene, Kind kind, const RunSettings& settings,
+                           std::optional<double> stated) {
   const SceneList list = scene_list(scene, kind);
   // One kind per call, so that time and counters are per kind.
-  Options options = options_for_call(settings, list.truth.has_value());
+  Options options = options_for_call(settings, stated, list.truth.has_value());
   options.vertex_face = kind == Kind::vertex_face;
   options.edge_edge = kind == Kind::edge_edge;
   options.vertex_edge = kind == Kind::vertex_edge;
@@ -172,7 +221,8 @@ InputReport run_scene_kind(const Scene& scene, Kind kind, const RunSettings& set
   const MeshView mesh{scene.positions_t0, scene.positions_t1, scene.faces};
   TimedResult timed_result =
       timed(settings.repeat, [&](BatchResult& out) { mesh_ccd(mesh, scene.candidates, options, out); });
-  return make_report(scene.path, kind, list.count, std::move(timed_result), options, list.truth);
+  return make_report(scene.path, kind, list.count, std::move(timed_result), options,
+                     {list.truth, data_labels(stated)});
 }
 
 // vf and ee always (an absent list is an empty one, as ever); ve and vv when
@@ -185,13 +235,14 @@ std::vector<InputReport> run_scene(const fs::path& directory, const RunSettings&
   }
   Scene scene = read_scene(directory);
   scene.path = directory.string();  // report the path as given
-  std::vector<InputReport> reports{run_scene_kind(scene, Kind::vertex_face, settings),
-                                   run_scene_kind(scene, Kind::edge_edge, settings)};
+  const std::optional<double> stated = stated_separation(directory);
+  std::vector<InputReport> reports{run_scene_kind(scene, Kind::vertex_face, settings, stated),
+                                   run_scene_kind(scene, Kind::edge_edge, settings, stated)};
   std::error_code unreadable;
   if (fs::is_regular_file(directory / "ve.csv", unreadable))
-    reports.push_back(run_scene_kind(scene, Kind::vertex_edge, settings));
+    reports.push_back(run_scene_kind(scene, Kind::vertex_edge, settings, stated));
   if (fs::is_regular_file(directory / "vv.csv", unreadable))
-    reports.push_back(run_scene_kind(scene, Kind::vertex_vertex, settings));
+    reports.push_back(run_scene_kind(scene, Kind::vertex_vertex, settings, stated));
   return reports;
 }
 

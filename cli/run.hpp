@@ -14,6 +14,19 @@
 // executable, the tests and later commands all go through run_inputs.
 namespace batchccd::cli {
 
+// What ground truth is labelled for: a contact is the primitives coming
+// within min_distance at some t in [0, tmax].
+struct TruthLabels {
+  double min_distance = 0;
+  double tmax = 1;
+};
+
+// The file in which a data set states the separation its truth is labelled
+// for (one number), beside its query files or in its scene directory, as in
+// ../shared/data/min-distance/unit-ms1e-3. Without it, truth is labelled
+// for touching (0); for tmax 1 always (no data states another).
+inline constexpr const char* stated_separation_file = "ms.txt";
+
 struct RunSettings {
   // Query CSVs, directories searched recursively, scene directories; run in
   // this order.
@@ -25,6 +38,9 @@ struct RunSettings {
   // mode, min_distance, tmax, isa and threads as given; the per-call
   // switches are set per input.
   Options options;
+  // No --min-distance: each input takes the separation its data states
+  // (stated_separation_file), options.min_distance where it states none.
+  bool min_distance_from_data = false;
   // Keep every query's result in InputReport::results (--out needs them).
   bool keep_results = false;
   // --repeat: each input's call made this many times into the same result,
@@ -48,7 +64,10 @@ struct InputReport {
   std::int64_t queries = 0;
   std::int64_t hits = 0;
   std::int64_t culled = 0;
-  // Known only when the input has ground truth.
+  // What the input's ground truth is labelled for; none without truth.
+  std::optional<TruthLabels> truth_labels;
+  // Known only when the input has ground truth labelled for this call's
+  // min_distance and tmax (truth for other ones would count wrong answers).
   std::optional<std::int64_t> positives;
   std::optional<std::int64_t> false_positives;
   std::optional<std::int64_t> false_negatives;
@@ -65,6 +84,8 @@ struct InputReport {
 
   // 0 when nothing was timed.
   double queries_per_second() const;
+  // The input has truth, labelled for another min_distance or tmax.
+  bool truth_not_scored() const;
 };
 
 struct RunOutcome {

@@ -108,6 +108,9 @@ void check_mesh(const MeshView& mesh, const CandidateLists& candidates, ListsToC
   for (std::size_t i = 0; i < candidates.vertex_face.size(); ++i) {
     const auto [vertex, face] = candidates.vertex_face[i];
     check_vertex(vertex, "vertex-face", i);
+    if (m == 0)  // an empty range would tell nothing: say what is missing
+      refuse("vertex-face candidates need faces, and no faces were given (vertex-face candidate " +
+             std::to_string(i) + " names face " + std::to_string(face) + ")");
     if (face < 0 || face >= m)
       refuse("vertex-face candidate " + std::to_string(i) + ": face " + std::to_string(face) + range_text(m));
   }

@@ -135,7 +135,7 @@ std::map<std::string, std::string> parse_json_line(const std::string& line) {
 const std::vector<std::string> json_field_names = {
     "input",     "kind",           "mode",           "min_distance", "tmax", "isa",
     "threads",   "queries",        "hits",           "positives",
-    "false_positives", "false_negatives", "culled", "seconds",
+    "false_positives", "false_negatives", "truth_min_distance", "truth_tmax", "culled", "seconds",
     "queries_per_second", "exact_escalations", "max_query_seconds"};
 
 // ---- running the executable -------------------------------------------------
@@ -275,14 +275,14 @@ TEST_F(CliTest, DoubleDashEndsTheOptions) {
   EXPECT_EQ(objects[0].at("input"), "-vf.csv");
 }
 
-// What batchccd::validate says of these options (its "batchccd: " prefix
-// left out), or "" when it accepts them.
+// What batchccd::validate says of these options after the field's name
+// (the tool names its flag instead), or "" when it accepts them.
 std::string validate_message(const batchccd::Options& options) {
   try {
     batchccd::validate(options);
   } catch (const std::invalid_argument& error) {
     const std::string message = error.what();
-    return message.substr(message.find("Options::"));
+    return message.substr(message.find(" must be"));
   }
   return {};
 }
@@ -341,6 +341,7 @@ TEST_F(CliTest, BadMinDistanceOrTmaxExitsTwoNamingOptionAndValue) {
 // change their answers where the geometry says they must.
 TEST_F(CliTest, MinDistanceAndTmaxDecide) {
   write_file(path("vv/pass.csv"), point_query_csv({vertex_vertex_pass(true)}));  // truth for 0.3
+  write_file(path("vv/ms.txt"), "0.3\n");
   const auto within = run_json({"--min-distance", "0.3", "vv/pass.csv"});
   ASSERT_EQ(within.size(), 1u);
   EXPECT_EQ(within[0].at("min_distance"), "0.3");
@@ -352,8 +353,8 @@ TEST_F(CliTest, MinDistanceAndTmaxDecide) {
   const auto beyond = run_json({"--min-distance", "0.2", "vv/pass.csv"});
   ASSERT_EQ(beyond.size(), 1u);
   EXPECT_EQ(beyond[0].at("hits"), "0");
-  EXPECT_EQ(beyond[0].at("false_negatives"), "1");  // labelled for 0.3
-  EXPECT_EQ(run_json({"vv/pass.csv"}).at(0).at("hits"), "0");
+  EXPECT_EQ(beyond[0].at("false_negatives"), "null");  // labelled for 0.3: not scored
+  EXPECT_EQ(run_json({"--min-distance", "0", "vv/pass.csv"}).at(0).at("hits"), "0");
 
   // The vertex-face hit is at t = 1/2.
   write_file(path("vf/q.csv"), vertex_face_hit_and_miss);
@@ -417,6 +418,7 @@ void write_point_scene(const fs::path& directory) {
   write_file(directory / "ve_truth.txt", "1\n0\n");
   write_file(directory / "vv.csv", "6,7\n3,0\n");
   write_file(directory / "vv_truth.txt", "0\n1\n");
+  write_file(directory / "ms.txt", "0.4\n");
 }
 
 TEST_F(CliTest, SceneWithPointCandidatesGivesFourReports) {
@@ -440,7 +442,7 @@ TEST_F(CliTest, SceneWithPointCandidatesGivesFourReports) {
   EXPECT_EQ(lines[7].rfind("1,", 0), 0u);
 
   // Touching, neither point candidate collides.
-  const auto touching = run_json({"scene"});
+  const auto touching = run_json({"--min-distance", "0", "scene"});
   ASSERT_EQ(touching.size(), 4u);
   EXPECT_EQ(touching[2].at("hits"), "0");
   EXPECT_EQ(touching[3].at("hits"), "0");
@@ -744,6 +746,114 @@ TEST_F(CliTest, SceneOnTheCommandLine) {
   EXPECT_EQ(lines[3], "0,inf");
 }
 
+// ---- the user's words and the truth's labels ---------------------------------------
+
+// A refused --min-distance or --tmax names the flag, never the library's field.
+TEST_F(CliTest, RefusedOptionsNameTheFlagNotTheLibrarysField) {
+  write_file(path("vf/q.csv"), vertex_face_hit_and_miss);
+  const CliRun negative = run_cli({"run", "--min-distance", "-1", "vf/q.csv"});
+  EXPECT_EQ(negative.exit_code, 2);
+  EXPECT_NE(negative.err.find("batchccd run: --min-distance must be >= 0 and finite, got -1"), std::string::npos)
+      << negative.err;
+  const CliRun late = run_cli({"run", "--tmax", "2", "vf/q.csv"});
+  EXPECT_EQ(late.exit_code, 2);
+  EXPECT_NE(late.err.find("batchccd run: --tmax must be in (0, 1], got 2"), std::string::npos) << late.err;
+  for (const CliRun& run : {negative, late}) {
+    EXPECT_EQ(run.err.find("Options::"), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("Run 'batchccd run --help' for usage."), std::string::npos) << run.err;
+    EXPECT_TRUE(run.out.empty());
+  }
+}
+
+// Truth labelled for touching (no ms.txt) and the whole step is not scored
+// against a run with a separation or an earlier tmax: the counts are blank,
+// the JSON says what the truth is labelled for, the table says why.
+TEST_F(CliTest, TruthForAnotherSeparationOrTmaxIsNotScoredAndSaysWhy) {
+  write_file(path("vf/q.csv"), vertex_face_hit_and_miss);
+  const auto scored = run_json({"vf/q.csv"});
+  ASSERT_EQ(scored.size(), 1u);
+  EXPECT_EQ(scored[0].at("false_negatives"), "0");
+  EXPECT_EQ(scored[0].at("truth_min_distance"), "0.0");
+  EXPECT_EQ(scored[0].at("truth_tmax"), "1.0");
+  for (const std::vector<std::string>& other : {std::vector<std::string>{"--min-distance", "0.25", "vf/q.csv"},
+                                                std::vector<std::string>{"--tmax", "0.75", "vf/q.csv"}}) {
+    const auto objects = run_json(other);
+    ASSERT_EQ(objects.size(), 1u) << other[0];
+    for (const char* count : {"positives", "false_positives", "false_negatives"})
+      EXPECT_EQ(objects[0].at(count), "null") << other[0] << " " << count;
+    EXPECT_EQ(objects[0].at("truth_min_distance"), "0.0") << other[0];
+    EXPECT_EQ(objects[0].at("truth_tmax"), "1.0") << other[0];
+    EXPECT_EQ(objects[0].at("hits"), "1") << other[0];  // the run itself still counts
+  }
+  const CliRun table = run_cli({"run", "--min-distance", "0.25", "vf/q.csv"});
+  EXPECT_EQ(table.exit_code, 0) << table.err;
+  const auto lines = lines_of(table.out);
+  ASSERT_GE(lines.size(), 5u) << table.out;
+  EXPECT_EQ(lines[2].rfind("vf/q.csv", 0), 0u);
+  EXPECT_NE(lines[2].find(" -  "), std::string::npos) << lines[2];
+  EXPECT_NE(table.out.find("note: vf/q.csv (vf): truth labelled for min_distance 0, tmax 1; this run asked "
+                           "min_distance 0.25, tmax 1: not scored"),
+            std::string::npos)
+      << table.out;
+  // A scored run has no note.
+  EXPECT_EQ(run_cli({"run", "vf/q.csv"}).out.find("note:"), std::string::npos);
+}
+
+// ms.txt states the separation a data set's truth is labelled for: without
+// --min-distance the run takes it (each input its own), and scores the truth.
+TEST_F(CliTest, StatedSeparationIsTheDefaultAndItsTruthIsScored) {
+  write_file(path("far/vv/pass.csv"), point_query_csv({vertex_vertex_pass(true)}));  // a contact within 0.25
+  write_file(path("far/vv/ms.txt"), " 0.3\n");
+  write_file(path("touching/vv/pass.csv"), point_query_csv({vertex_vertex_pass(false)}));
+  const auto objects = run_json({"far", "touching"});
+  ASSERT_EQ(objects.size(), 2u);
+  EXPECT_EQ(objects[0].at("min_distance"), "0.3");
+  EXPECT_EQ(objects[0].at("truth_min_distance"), "0.3");
+  EXPECT_EQ(objects[0].at("hits"), "1");
+  EXPECT_EQ(objects[0].at("false_negatives"), "0");
+  EXPECT_EQ(objects[1].at("min_distance"), "0.0");  // no ms.txt: touching
+  EXPECT_EQ(objects[1].at("hits"), "0");
+  EXPECT_EQ(objects[1].at("false_positives"), "0");
+  // The table names each input's separation when they differ.
+  const CliRun table = run_cli({"run", "far", "touching"});
+  EXPECT_EQ(table.exit_code, 0) << table.err;
+  const auto lines = lines_of(table.out);
+  ASSERT_EQ(lines.size(), 5u) << table.out;
+  EXPECT_NE(lines[0].find("min_distance per input"), std::string::npos) << lines[0];
+  EXPECT_NE(lines[1].find("min_distance"), std::string::npos) << lines[1];
+  EXPECT_NE(lines[2].find("  0.3  "), std::string::npos) << lines[2];
+  // --min-distance overrides it, and that truth is then not scored.
+  const auto overridden = run_json({"--min-distance", "0", "far"});
+  EXPECT_EQ(overridden.at(0).at("hits"), "0");
+  EXPECT_EQ(overridden.at(0).at("false_negatives"), "null");
+  // A scene states it in its directory.
+  write_scene(path("scene"));
+  write_file(path("scene/ms.txt"), "0.001\n");
+  for (const auto& object : run_json({"scene"})) EXPECT_EQ(object.at("min_distance"), "0.001");
+}
+
+TEST_F(CliTest, UnreadableStatedSeparationIsAnInputErrorNamingTheFile) {
+  write_file(path("vv/pass.csv"), point_query_csv({vertex_vertex_pass(true)}));
+  for (const char* bad : {"-1\n", "0.3 0.4\n", "wide\n", "", "inf\n"}) {
+    write_file(path("vv/ms.txt"), bad);
+    const CliRun result = run_cli({"run", "vv/pass.csv"});
+    EXPECT_EQ(result.exit_code, 1) << bad;
+    EXPECT_NE(result.err.find("ms.txt:1: must hold one separation, a number >= 0 and finite"), std::string::npos)
+        << bad << "\n" << result.err;
+  }
+}
+
+// --truth is labelled by whoever passes it for this run's separation and tmax.
+TEST_F(CliTest, TruthFileIsScoredAtTheRunsOwnSeparation) {
+  // Its truth column (labelled for touching) is replaced by --truth.
+  write_file(path("vv/pass.csv"), point_query_csv({vertex_vertex_pass(false)}));
+  write_file(path("truth.txt"), "1\n");
+  const auto objects = run_json({"--min-distance", "0.3", "--truth", "truth.txt", "vv/pass.csv"});
+  ASSERT_EQ(objects.size(), 1u);
+  EXPECT_EQ(objects[0].at("truth_min_distance"), "0.3");
+  EXPECT_EQ(objects[0].at("false_negatives"), "0");
+}
+
 // ---- formatting -------------------------------------------------------------------
 
 // Paths are bytes: what is not UTF-8 becomes U+FFFD, the rest survives.
@@ -880,11 +990,32 @@ TEST_F(CliTest, SharedMinDistanceSetHasNoFalseNegatives) {
     }
     EXPECT_EQ(queries, 250 + 74) << mode;  // the README's counts
   }
-  // Touching alone misses the contacts the separation adds (README: 18 + 15).
-  std::int64_t missed = 0;
-  for (const auto& object : run_json({"--mode", "exact", data.string()}))
-    missed += std::stoll(object.at("false_negatives"));
-  EXPECT_EQ(missed, 18 + 15);
+  // Touching alone finds all but the contacts the separation adds (README: 18 + 15).
+  std::int64_t positives = 0, touching = 0;
+  for (const auto& object : run_json({"--mode", "exact", data.string()})) positives += std::stoll(object.at("positives"));
+  for (const auto& object : run_json({"--mode", "exact", "--min-distance", "0", data.string()}))
+    touching += std::stoll(object.at("hits"));
+  EXPECT_EQ(positives - touching, 18 + 15);
+}
+
+// The shared data, run as a new user would: the minimum-separation set at
+// its stated separation without being told, and a touching scene never
+// scored at a separation it was not labelled for.
+TEST_F(CliTest, SharedDataIsScoredOnlyAtItsLabelledSeparation) {
+  const fs::path data = BATCHCCD_SHARED_DATA;
+  const fs::path set = data / "min-distance" / "unit-ms1e-3", scene = data / "scenes" / "cloth-funnel-227";
+  if (!fs::exists(set / "ms.txt") || !fs::exists(scene / "vf_truth.txt")) GTEST_SKIP() << "no shared data at " << data;
+  for (const char* mode : {"conservative", "exact"}) {
+    for (const auto& object : run_json({"--mode", mode, set.string()})) {
+      EXPECT_EQ(object.at("min_distance"), "0.001") << mode;
+      EXPECT_EQ(object.at("false_negatives"), "0") << mode << " " << object.at("input");
+    }
+  }
+  for (const auto& object : run_json({"--mode", "exact", "--min-distance", "1e-3", scene.string()})) {
+    EXPECT_EQ(object.at("truth_min_distance"), "0.0");
+    EXPECT_EQ(object.at("false_negatives"), "null") << object.at("kind");
+    EXPECT_EQ(object.at("false_positives"), "null") << object.at("kind");
+  }
 }
 
 // The tool's own path over the reference data (the library's is tested in

@@ -18,6 +18,7 @@ from ._batchccd import (  # noqa: F401
     BatchResult,
     InputError,
     QueryResult,
+    Status,
     __version__,
     available_isas,
     batch_ccd,
@@ -39,7 +40,7 @@ from ._batchccd import (  # noqa: F401
 )
 
 __all__ = [
-    "STATUS_INVALID_INPUT", "STATUS_OK", "BatchResult", "InputError", "QueryResult", "__version__",
+    "STATUS_INVALID_INPUT", "STATUS_OK", "BatchResult", "InputError", "QueryResult", "Status", "__version__",
     "available_isas", "batch_ccd", "default_options", "edge_edge_ccd", "ipc", "kinds", "make_query", "mesh_ccd",
     "modes", "query_ccd", "read_scene", "resolve_isa", "squared_distance", "unique_edges",
     "vertex_edge_ccd", "vertex_face_ccd", "vertex_vertex_ccd",

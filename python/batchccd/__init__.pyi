@@ -1,5 +1,6 @@
 # Type stub of the batchccd module (python/src/module.cpp), for editors and
 # type checkers. The options every call takes are the keywords of Options.
+from enum import IntEnum
 from typing import Literal, Mapping, Sequence, TypedDict, Union
 
 import numpy as np
@@ -9,8 +10,13 @@ from typing_extensions import Unpack
 from . import ipc as ipc
 
 __version__: str
-STATUS_OK: int
-STATUS_INVALID_INPUT: int
+
+class Status(IntEnum):
+    OK = 0
+    INVALID_INPUT = 1
+
+STATUS_OK: Status  # Status.OK
+STATUS_INVALID_INPUT: Status  # Status.INVALID_INPUT
 
 Kind = Literal["vf", "ee", "ve", "vv", "vertex_face", "edge_edge", "vertex_edge", "vertex_vertex"]
 Point = Union[npt.ArrayLike, Sequence[float]]
@@ -41,7 +47,7 @@ class QueryResult:
     @property
     def toi(self) -> float: ...
     @property
-    def status(self) -> int: ...
+    def status(self) -> Status: ...
 
 class BatchResult:
     @property

@@ -9,11 +9,15 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <exception>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include <batchccd/batchccd.hpp>
@@ -23,6 +27,28 @@ using namespace pybind11::literals;
 
 namespace batchccd::python {
 namespace {
+
+// ---------------------------------------------------------------- messages
+
+// The library's messages name things as C++ does; Python's calls name them
+// otherwise. Every library error reaches Python through in_python_names
+// (the exception translator in PYBIND11_MODULE), so a rename is one row here.
+constexpr std::pair<std::string_view, std::string_view> kPythonNames[] = {
+    {"Options::", "option "},               // Options::min_distance: the keyword min_distance
+    {"positions_t0", "x0"},                 // MeshView's positions: mesh_ccd's x0, x1
+    {"positions_t1", "x1"},
+    {"batchccd::ipc::", "batchccd.ipc."},  // ipc.hpp's calls: this module's batchccd.ipc
+};
+
+std::string in_python_names(std::string message) {
+  constexpr std::string_view library_prefix = "batchccd: ";
+  if (message.starts_with(library_prefix)) message.erase(0, library_prefix.size());
+  for (const auto& [library_name, python_name] : kPythonNames)
+    for (std::size_t at = message.find(library_name); at != std::string::npos;
+         at = message.find(library_name, at + python_name.size()))
+      message.replace(at, library_name.size(), python_name);
+  return message;
+}
 
 // ---------------------------------------------------------------- options
 
@@ -845,8 +871,27 @@ PYBIND11_MODULE(_batchccd, m) {
   signatures.disable_function_signatures();
   m.doc() = "batchccd: narrow-phase continuous collision detection over NumPy arrays.";
   m.attr("__version__") = BATCHCCD_VERSION;
-  m.attr("STATUS_OK") = static_cast<int>(Status::ok);
-  m.attr("STATUS_INVALID_INPUT") = static_cast<int>(Status::invalid_input);
+  // Library errors (std::invalid_argument) as ValueError, in Python's names.
+  py::register_local_exception_translator([](std::exception_ptr thrown) {
+    try {
+      if (thrown) std::rethrow_exception(thrown);
+    } catch (const std::invalid_argument& error) {
+      PyErr_SetString(PyExc_ValueError, in_python_names(error.what()).c_str());
+    }
+  });
+  // Status as an IntEnum: it prints its name and compares, indexes and
+  // stores as the int it is (the result arrays hold the ints).
+  const py::object status_enum = py::module_::import("enum").attr("IntEnum")(
+      "Status",
+      py::make_tuple(py::make_tuple("OK", static_cast<int>(Status::ok)),
+                     py::make_tuple("INVALID_INPUT", static_cast<int>(Status::invalid_input))),
+      "module"_a = "batchccd");
+  status_enum.attr("__doc__") =
+      "A query's status: OK (evaluated), INVALID_INPUT (a NaN or infinite coordinate: not evaluated, "
+      "hit True, toi 0).";
+  m.attr("Status") = status_enum;
+  m.attr("STATUS_OK") = status_enum.attr("OK");
+  m.attr("STATUS_INVALID_INPUT") = status_enum.attr("INVALID_INPUT");
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError).attr("__doc__") =
       "What read_scene raises on a missing, unreadable or malformed file: \"file:line: problem\" (io.hpp).";
 
@@ -854,11 +899,13 @@ PYBIND11_MODULE(_batchccd, m) {
       .def_readonly("hit", &QueryResult::hit, "The primitives come within min_distance at some t in [0, tmax].")
       .def_readonly("toi", &QueryResult::toi, "Time of impact in [0, tmax]; +inf when there is none.")
       .def_property_readonly(
-          "status", [](const QueryResult& r) { return static_cast<int>(r.status); },
-          "STATUS_OK, or STATUS_INVALID_INPUT for a NaN or infinite coordinate (then hit, toi 0).")
-      .def("__repr__", [](const QueryResult& r) {
+          "status", [status_enum](const QueryResult& r) { return status_enum(static_cast<int>(r.status)); },
+          "Status.OK, or Status.INVALID_INPUT for a NaN or infinite coordinate (then hit, toi 0).")
+      .def("__repr__", [status_enum](const QueryResult& r) {
+        const py::object status = status_enum(static_cast<int>(r.status));
         return "QueryResult(hit=" + std::string(r.hit ? "True" : "False") + ", toi=" +
-               py::repr(py::float_(r.toi)).cast<std::string>() + ", status=" + std::to_string(static_cast<int>(r.status)) + ")";
+               py::repr(py::float_(r.toi)).cast<std::string>() + ", status=Status." +
+               status.attr("name").cast<std::string>() + ")";
       });
 
   py::class_<Result>(m, "BatchResult",
@@ -880,7 +927,7 @@ PYBIND11_MODULE(_batchccd, m) {
           "float64 TOI per candidate, inf without a hit; None without per_candidate_results.")
       .def_property_readonly(
           "status", [](const Result& r) { return field_view<QueryResult, std::int32_t>(r, r.storage->results, offsetof(QueryResult, status), r.has_results); },
-          "int32 status per candidate (STATUS_OK, STATUS_INVALID_INPUT); None without per_candidate_results.")
+          "int32 status per candidate (the values of Status); None without per_candidate_results.")
       .def_property_readonly(
           "hit_candidates", [](const Result& r) { return field_view<Hit, std::int64_t>(r, r.storage->hits, offsetof(Hit, candidate), r.has_hits); },
           "int64 indices of the candidates that hit, increasing; None without hit_list.")
@@ -889,7 +936,7 @@ PYBIND11_MODULE(_batchccd, m) {
           "float64 TOI of each listed hit; None without hit_list.")
       .def_property_readonly(
           "hit_statuses", [](const Result& r) { return field_view<Hit, std::int32_t>(r, r.storage->hits, offsetof(Hit, status), r.has_hits); },
-          "int32 status of each listed hit; None without hit_list.")
+          "int32 status of each listed hit (the values of Status); None without hit_list.")
       .def("__repr__", [](const Result& r) {
         return "BatchResult(earliest_toi=" + py::repr(py::float_(r.storage->earliest_toi)).cast<std::string>() +
                ", candidates=" + std::to_string(r.storage->counters.candidates) + ", hits=" +
@@ -928,12 +975,12 @@ Returns a BatchResult: earliest_toi, counters, and per candidate (order
 vertex-face, edge-edge, vertex-edge, vertex-vertex) hit, toi and status,
 or the hit list (hit_candidates, hit_tois, hit_statuses).
 
-Bad input: ValueError with the library's message, before anything is
-evaluated, for position arrays of different row counts, a wrong column
+Bad input: ValueError with the library's message (in this module's
+names: x0, x1, min_distance), before anything is evaluated, for position arrays of different row counts, a wrong column
 count, an id out of range (also in a list the options switch off), bad
 options or separations; TypeError for a non-numeric dtype. A NaN or
 infinite coordinate is no error: exactly the candidates that read that
-vertex get status STATUS_INVALID_INPUT, hit True, toi 0. The GIL is
+vertex get status Status.INVALID_INPUT, hit True, toi 0. The GIL is
 released during the evaluation.
 )").c_str());
 
@@ -955,7 +1002,7 @@ min_distances
 out        a BatchResult of an earlier call whose storage is reused.
 
 Returns a BatchResult. A query with a NaN or infinite coordinate gets
-STATUS_INVALID_INPUT (hit True, toi 0); the others are unaffected.
+Status.INVALID_INPUT (hit True, toi 0); the others are unaffected.
 )").c_str());
 
   m.def(
@@ -973,7 +1020,7 @@ Vertex p against triangle (a, b, c) (ccd.hpp); each point 3 coordinates,
 moving linearly from its _t0 to its _t1 position. hit when the vertex
 comes within min_distance of the triangle (edges and corners included) at
 some t in [0, tmax]. A NaN or infinite coordinate: status
-STATUS_INVALID_INPUT, hit True, toi 0. Degenerate geometry is valid input.
+Status.INVALID_INPUT, hit True, toi 0. Degenerate geometry is valid input.
 )").c_str());
   m.def(
       "edge_edge_ccd",

@@ -74,7 +74,7 @@ def test_wrong_shapes(scene):
         batchccd.mesh_ccd(x0.ravel(), x1, faces)
     with pytest.raises(ValueError, match="a mesh is 2D or 3D at both times"):
         batchccd.mesh_ccd(x0, x1[:, :2], faces)
-    with pytest.raises(ValueError, match=r"positions_t1 must have 3 columns \(2 for a 2D mesh\), it has 4"):
+    with pytest.raises(ValueError, match=r"x1 must have 3 columns \(2 for a 2D mesh\), it has 4"):
         batchccd.mesh_ccd(x0, np.column_stack([x1, x1[:, :1]]), faces)
     with pytest.raises(ValueError, match="row"):
         batchccd.mesh_ccd(x0, x1[:-1], faces)
