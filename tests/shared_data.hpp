@@ -54,6 +54,9 @@ DataRun timed_run(std::string input, Kind kind, std::optional<std::vector<bool>>
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   run.results = std::move(result.results);
   run.counters = result.counters;
+  if (run.truth) {
+    EXPECT_EQ(run.results.size(), run.truth->size()) << run.input << " " << to_string(kind);
+  }
   return run;
 }
 
@@ -91,6 +94,7 @@ inline std::vector<DataRun> run_shared_data(const lab::Method& method, Options o
       Options one_kind = options;
       one_kind.vertex_face = kind == Kind::vertex_face;
       one_kind.edge_edge = kind == Kind::edge_edge;
+      one_kind.vertex_edge = one_kind.vertex_vertex = false;  // their results would follow this kind's
       runs.push_back(timed_run(directory.string(), kind,
                                one_kind.vertex_face ? scene.vertex_face_truth : scene.edge_edge_truth,
                                [&] { return lab::mesh_ccd(mesh, scene.candidates, one_kind, settings); }));

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -705,56 +704,6 @@ TEST_F(ExactSharedData, OtherMethodsToiAgainstTheExactFirstContact) {
       std::printf("[ record   ] conservative toi at most %.3g before the exact first contact\n",
                   latest_lead);
   }
-}
-
-// Query time distribution in exact mode: each query timed alone on the
-// thread's CPU clock (the least of three runs, so that other processes on a
-// shared machine do not count), against conservative mode's total; and what
-// exact arithmetic settled. Printed for the record, never asserted.
-TEST_F(ExactSharedData, RecordsQueryTimesAndEscalations) {
-  auto cpu_seconds = [] {
-    timespec now{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-    return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-  };
-  const std::vector<LabeledQuery> queries = shared_queries(1);
-  std::vector<double> exact_times, conservative_times;
-  std::int64_t toi_only = 0, decisions = 0;
-  Options conservative;
-  for (const LabeledQuery& q : queries) {
-    double exact_best = kInfinity, conservative_best = kInfinity;
-    for (int repeat = 0; repeat < 3; ++repeat) {
-      const double start = cpu_seconds();
-      const reference::Evaluation e = reference::evaluate_query(q.kind, q.query, exact_options(), {});
-      const double middle = cpu_seconds();
-      query_ccd(q.kind, q.query, conservative);
-      const double end = cpu_seconds();
-      exact_best = std::min(exact_best, middle - start);
-      conservative_best = std::min(conservative_best, end - middle);
-      EXPECT_EQ(e.result.hit, q.truth);
-      if (repeat == 0) {
-        toi_only += e.exact_stage == reference::ExactStage::toi;
-        decisions += e.exact_stage == reference::ExactStage::decision;
-      }
-    }
-    exact_times.push_back(exact_best);
-    conservative_times.push_back(conservative_best);
-  }
-  const std::size_t n = exact_times.size();
-  for (auto* times : {&exact_times, &conservative_times}) {
-    std::sort(times->begin(), times->end());
-    double total = 0;
-    for (double t : *times) total += t;
-    std::printf("[ record   ] %s mode, %zu queries, CPU time: slowest %.0f us, 99.9th "
-                "percentile %.0f us, 99th %.0f us, mean %.2f us\n",
-                times == &exact_times ? "exact" : "conservative", n, 1e6 * times->back(),
-                1e6 * (*times)[n * 999 / 1000], 1e6 * (*times)[n * 99 / 100],
-                1e6 * total / static_cast<double>(n));
-  }
-  std::printf("[ record   ] exact arithmetic settled %lld decisions (%.2f %%) and %lld TOIs of "
-              "certain contacts (%.2f %%)\n",
-              static_cast<long long>(decisions), 100.0 * static_cast<double>(decisions) / static_cast<double>(n),
-              static_cast<long long>(toi_only), 100.0 * static_cast<double>(toi_only) / static_cast<double>(n));
 }
 
 // ---- transforms that keep the exact answer ------------------------------------------

@@ -915,10 +915,12 @@ Query assembled_query(const Scene& scene, const std::array<int, 4>& vertex_ids) 
   return query;
 }
 
-// The flat query files of a scene hold exactly the points of its mesh.
-void expect_queries_match_mesh(const fs::path& directory) {
+// The flat query files of a scene hold exactly the points of its mesh;
+// counts in `compared` those it compared (a scene may have either or both).
+void expect_queries_match_mesh(const fs::path& directory, int& compared) {
   const Scene scene = read_scene(directory);
   if (fs::exists(directory / "queries_vf.csv")) {
+    ++compared;
     const QueryFile file = read_query_csv(directory / "queries_vf.csv", Kind::vertex_face);
     ASSERT_EQ(file.queries.size(), scene.candidates.vertex_face.size());
     EXPECT_EQ(file.truth, scene.vertex_face_truth);
@@ -930,6 +932,7 @@ void expect_queries_match_mesh(const fs::path& directory) {
     }
   }
   if (fs::exists(directory / "queries_ee.csv")) {
+    ++compared;
     const QueryFile file = read_query_csv(directory / "queries_ee.csv", Kind::edge_edge);
     ASSERT_EQ(file.queries.size(), scene.candidates.edge_edge.size());
     EXPECT_EQ(file.truth, scene.edge_edge_truth);
@@ -941,13 +944,18 @@ void expect_queries_match_mesh(const fs::path& directory) {
 
 TEST(SharedDataTest, SceneQueryFilesMatchTheirMeshes) {
   SKIP_WITHOUT_SHARED_DATA("scenes");
-  int scenes = 0;
+  int scenes = 0, compared = 0, query_files = 0;
   for (const auto& entry : fs::directory_iterator(shared_data / "scenes")) {
     if (!is_scene_directory(entry.path())) continue;
-    expect_queries_match_mesh(entry.path());
+    expect_queries_match_mesh(entry.path(), compared);
+    for (const auto& file : fs::directory_iterator(entry.path()))
+      query_files += file.path().filename().string().starts_with("queries_");
     ++scenes;
   }
   EXPECT_GT(scenes, 0);
+  // Every flat query file was compared: none under a name the check skips.
+  EXPECT_GT(compared, 0);
+  EXPECT_EQ(compared, query_files);
 }
 
 }  // namespace

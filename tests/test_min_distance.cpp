@@ -2,6 +2,7 @@
 // cases at and around the separation, an independent exact reference
 // (tests/exact_distance.hpp), properties, batches against single queries,
 // bad options, and the labelled data of ../shared/data/min-distance.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -191,6 +192,7 @@ TEST(BadOptions, AreRefusedByEveryCall) {
   }
   try {
     query_ccd(Kind::vertex_face, q, with(Mode::conservative, -0.5));
+    ADD_FAILURE() << "min_distance -0.5 was accepted";
   } catch (const std::invalid_argument& error) {
     EXPECT_NE(std::string(error.what()).find("min_distance"), std::string::npos) << error.what();
     EXPECT_NE(std::string(error.what()).find("-0.5"), std::string::npos) << error.what();
@@ -414,6 +416,9 @@ TEST(SharedMinDistanceData, CertifiedModesMatchEveryLabel) {
   for (const char* name : {"vf.csv", "ee.csv"}) {
     const QueryFile file = read_query_csv(directory / name, *kind_from_path(directory / name));
     ASSERT_TRUE(file.truth.has_value());
+    // Both answers present: a file of one label could not tell a mode that says it always.
+    ASSERT_GT(std::count(file.truth->begin(), file.truth->end(), true), 0) << name;
+    ASSERT_GT(std::count(file.truth->begin(), file.truth->end(), false), 0) << name;
     for (const Mode mode : kCertified) {
       Options options = with(mode, separation);
       const BatchResult batch = batch_ccd(file.kind, file.queries, options);

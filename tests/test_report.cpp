@@ -186,7 +186,9 @@ TEST_F(ReportTest, DemoAndReportCommandLines) {
 }
 
 // A small cloth: every method runs, exact mode is the truth, and the
-// certified mode misses nothing.
+// certified mode misses nothing. (Exact mode scored against itself proves
+// nothing; ReportComparesEveryMethodAgainstTheFilesTruth scores it against
+// a file's own truth.)
 TEST_F(ReportTest, DemoPrintsTheTableAndWritesReportCsvAndPlot) {
   const ReportRun result = run_report({"demo", "--resolution", "24", "--threads", "2", "--out", "out"});
   ASSERT_EQ(result.exit_code, 0) << result.err;
@@ -203,9 +205,6 @@ TEST_F(ReportTest, DemoPrintsTheTableAndWritesReportCsvAndPlot) {
   ASSERT_EQ(rows.size(), method_names().size());
   std::map<std::string, std::map<std::string, std::string>> by_method;
   for (const auto& row : rows) by_method[row.at("method")] = row;
-  EXPECT_EQ(by_method.at("exact").at("false_negatives"), "0");
-  EXPECT_EQ(by_method.at("exact").at("false_positives"), "0");
-  EXPECT_EQ(by_method.at("exact").at("toi_error_max"), "0");
   EXPECT_EQ(by_method.at("conservative").at("false_negatives"), "0");
   EXPECT_GT(std::stod(by_method.at("conservative").at("cull_ratio")), 0.9);
   EXPECT_EQ(by_method.at("cubic").at("culled"), "0");

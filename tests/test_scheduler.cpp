@@ -79,6 +79,7 @@ TEST(Scheduler, ResultsDoNotDependOnTheThreadCount) {
 TEST(Scheduler, RawQueriesDoNotDependOnTheThreadCount) {
   const std::filesystem::path data = BATCHCCD_SHARED_DATA;
   if (!std::filesystem::is_directory(data)) GTEST_SKIP() << data << " is absent";
+  int files = 0;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(data / "sample-queries")) {
     if (entry.path().extension() != ".csv") continue;
     const QueryFile file = read_query_csv(entry.path(), *kind_from_path(entry.path()));
@@ -87,7 +88,9 @@ TEST(Scheduler, RawQueriesDoNotDependOnTheThreadCount) {
     eight.threads = 8;
     expect_identical(batch_ccd(file.kind, file.queries, one), batch_ccd(file.kind, file.queries, eight),
                      entry.path().string());
+    ++files;
   }
+  EXPECT_GT(files, 0) << "no query file under " << data / "sample-queries";
 }
 
 TEST(Scheduler, RespectsTheCallersArena) {
