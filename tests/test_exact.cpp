@@ -25,6 +25,7 @@
 #include "reference/inclusion_solver.hpp"
 #include "reference/reference.hpp"
 #include "reference/scaled_query.hpp"
+#include "same_answers.hpp"
 #include "shared_data.hpp"
 
 namespace batchccd {
@@ -536,38 +537,62 @@ TEST(ExactAgainstCertified, RandomGridQueriesAgree) {
 
 // ---- counters ----------------------------------------------------------------------
 
+// The batch counters against what each query did on the scalar reference
+// path (which stage settled it, reference::evaluate_query), whatever the
+// certified path can settle today; and the answers against exact truth.
 TEST(ExactCounters, BatchCountsEscalationsAndTimesQueriesOnlyWhenAsked) {
   const double x = 4 + kTiny;
   const std::vector<Query> queries = {
       make(A, B, V(2, -1, 1), V(2, 1, 1), A, B, V(2, -1, -2), V(2, 1, -2)),  // clean, at 1/3
       make(A, B, V(x, 0, 1), V(6, 0, 1), A, B, V(x, 0, -1), V(6, 0, -1)),    // near miss
   };
+  const auto expect_counted = [&](const Options& options, const lab::Settings& stages, const std::string& what) {
+    const BatchResult batch = lab::batch_ccd(Kind::edge_edge, queries, options, stages);
+    std::int64_t escalated = 0, hits = 0, undecided = 0;
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+      const reference::Evaluation alone = reference::evaluate_query(Kind::edge_edge, queries[i], options, stages);
+      escalated += alone.exact_stage != reference::ExactStage::none;
+      hits += alone.result.hit;
+      undecided += alone.undecided;
+      EXPECT_EQ(batch.results[i].hit, alone.result.hit) << what << " query " << i;
+      // Exact arithmetic's answer is the truth: the near miss never touches.
+      if (i == 1 && alone.exact_stage != reference::ExactStage::none) {
+        EXPECT_FALSE(alone.result.hit) << what;
+      }
+    }
+    EXPECT_EQ(batch.counters.exact_escalations, escalated) << what;
+    EXPECT_EQ(batch.counters.hits, hits) << what;
+    EXPECT_EQ(batch.counters.undecided, undecided) << what;
+    EXPECT_TRUE(batch.results[0].hit) << what;  // never a false negative
+    EXPECT_LE(batch.results[0].toi, 1.0 / 3) << what;
+    return batch;
+  };
   Options options = exact_options();
-  BatchResult batch = lab::batch_ccd(Kind::edge_edge, queries, options, kNoSweptBoxes);
-  EXPECT_EQ(batch_ccd(Kind::edge_edge, queries, options).counters.culled_by_swept_box, 1);
-  EXPECT_EQ(batch.counters.hits, 1);
-  EXPECT_EQ(batch.counters.exact_escalations, 1);
+  BatchResult batch = expect_counted(options, kNoSweptBoxes, "exact");
+  EXPECT_FALSE(batch.results[1].hit);
   EXPECT_EQ(batch.counters.max_query_seconds, 0.0);
   EXPECT_EQ(batch.counters.solved_seconds, 0.0);
   EXPECT_EQ(batch.counters.escalated_seconds, 0.0);
+  // Timing the queries changes no answer and no count.
   options.time_queries = true;
-  batch = lab::batch_ccd(Kind::edge_edge, queries, options, kNoSweptBoxes);
-  EXPECT_GT(batch.counters.max_query_seconds, 0.0);
-  // Both queries are solved, one escalated: the sums bound the slowest.
-  EXPECT_GE(batch.counters.solved_seconds, batch.counters.max_query_seconds);
-  EXPECT_GT(batch.counters.escalated_seconds, 0.0);
-  EXPECT_LT(batch.counters.escalated_seconds, batch.counters.solved_seconds);
-  // Both lie in the plane y = 0; the generic search shows its budget's effect.
+  const BatchResult timed = expect_counted(options, kNoSweptBoxes, "exact, timed");
+  testing::expect_same_answers(timed, batch, "timed");
+  EXPECT_EQ(timed.counters.exact_escalations, batch.counters.exact_escalations);
+  // The near miss's swept boxes are apart along x (edge b in x >= 4 + 2^-50
+  // throughout, edge a in [0, 4]): the first filter culls it, by exact comparisons.
+  EXPECT_EQ(batch_ccd(Kind::edge_edge, queries, exact_options()).counters.culled_by_swept_box, 1);
+  // Both lie in the plane y = 0; the generic search with a long budget and
+  // with a short one before the exact stage.
+  options.time_queries = false;
   options.mode = Mode::conservative;
-  options.exact_stage_iterations = options.max_iterations;
-  batch = lab::batch_ccd(Kind::edge_edge, queries, options, kGenericSearch);
-  EXPECT_EQ(batch.counters.exact_escalations, 0);
-  EXPECT_EQ(batch.counters.hits, 2);  // its long search finds the near miss within tolerance
-  options.exact_stage_iterations = 16;
-  batch = lab::batch_ccd(Kind::edge_edge, queries, options, kGenericSearch);
-  EXPECT_EQ(batch.counters.exact_escalations, 1);  // a short one hands it to the exact stage
-  EXPECT_EQ(batch.counters.hits, 1);
-  EXPECT_EQ(batch.counters.undecided, 0);
+  std::int64_t escalated = 0;
+  for (const std::int64_t budget : {options.max_iterations, std::int64_t{16}, std::int64_t{0}}) {
+    options.exact_stage_iterations = budget;
+    escalated += expect_counted(options, kGenericSearch, "conservative, budget " + std::to_string(budget))
+                     .counters.exact_escalations;
+  }
+  // Some budget leaves the near miss to exact arithmetic, else the counts above compare zeros.
+  EXPECT_GT(escalated, 0);
 }
 
 // ---- the shared data ---------------------------------------------------------------
