@@ -16,8 +16,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -25,12 +23,11 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include <gtest/gtest.h>
 
 #include "batchccd/batchccd.hpp"
 #include "batchccd/lab.hpp"
+#include "temporary_directory.hpp"
 
 namespace {
 
@@ -569,10 +566,7 @@ TEST(BadInputMesh, MeshWithoutFacesServesEdgeEdgeCandidates) {
 // ---------------------------------------------------------------------------
 // Bad files: the readers refuse them naming file and line, before anything runs.
 
-void write_file(const fs::path& path, const std::string& content) {
-  fs::create_directories(path.parent_path());
-  std::ofstream(path, std::ios::binary) << content;
-}
+using test_support::write_file;
 
 // A query file of the given queries, coordinates as integers over 1.
 std::string query_csv(const std::vector<Query>& queries) {
@@ -582,19 +576,8 @@ std::string query_csv(const std::vector<Query>& queries) {
   return text.str();
 }
 
-class BadInputFiles : public ::testing::Test {
+class BadInputFiles : public test_support::TemporaryDirectoryTest {
  protected:
-  void SetUp() override {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    directory_ = fs::temp_directory_path() /
-                 ("batchccd_bad_input_" + std::string(test->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(directory_);
-    fs::create_directories(directory_);
-  }
-  void TearDown() override { fs::remove_all(directory_); }
-
-  fs::path path(const std::string& relative) const { return directory_ / relative; }
-
   // The InputError `read` throws; fails the test when it throws none.
   template <class Read>
   static std::optional<batchccd::InputError> error_of(Read read) {
@@ -606,8 +589,6 @@ class BadInputFiles : public ::testing::Test {
     ADD_FAILURE() << "no InputError";
     return std::nullopt;
   }
-
-  fs::path directory_;
 };
 
 TEST_F(BadInputFiles, SceneWithAnOutOfRangeCandidateNamesItsLine) {

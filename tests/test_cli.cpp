@@ -162,7 +162,7 @@ class CliTest : public program_test::ProgramTest {
 
   std::vector<fs::path> files_containing(const std::string& fragment) const {
     std::vector<fs::path> found;
-    for (const auto& entry : fs::recursive_directory_iterator(temporary_)) {
+    for (const auto& entry : fs::recursive_directory_iterator(directory())) {
       if (entry.path().filename().string().find(fragment) != std::string::npos)
         found.push_back(entry.path());
     }

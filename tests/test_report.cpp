@@ -237,11 +237,12 @@ TEST_F(ReportTest, WithoutGnuplotTheCsvAndTheScriptAreStillWritten) {
 
 // The script as gnuplot runs it: a PNG from a CSV with every kind of row,
 // zeros on the log axes included.
-TEST(ReportPlot, GnuplotDrawsTheCsv) {
+using ReportPlot = test_support::TemporaryDirectoryTest;
+
+TEST_F(ReportPlot, GnuplotDrawsTheCsv) {
   const auto gnuplot = batchccd::bench::find_gnuplot();
   if (!gnuplot) GTEST_SKIP() << "no gnuplot on PATH";
-  const fs::path directory = fs::temp_directory_path() / ("batchccd_plot_" + std::to_string(::getpid()));
-  fs::remove_all(directory);
+  const fs::path& directory = this->directory();
   write_file(directory / "methods.csv",
              "input,method,seconds,candidates,candidates_per_second,culled,cull_ratio,false_negatives,"
              "false_positives,toi_compared,toi_error_max,toi_error_mean\n"
@@ -256,7 +257,6 @@ TEST(ReportPlot, GnuplotDrawsTheCsv) {
   EXPECT_TRUE(is_png(directory / "plot.png"));
   write_file(directory / "broken.gp", "plot nonsense(\n");
   EXPECT_THROW(batchccd::bench::run_gnuplot(*gnuplot, directory, "broken.gp"), std::runtime_error);
-  fs::remove_all(directory);
 }
 
 }  // namespace
