@@ -605,8 +605,6 @@ TEST(ExactCounters, BatchCountsEscalationsAndTimesQueriesOnlyWhenAsked) {
 
 // ---- the shared data ---------------------------------------------------------------
 
-const std::filesystem::path kData = BATCHCCD_SHARED_DATA;
-
 struct LabeledQuery {
   Kind kind;
   Query query;
@@ -625,17 +623,15 @@ Query gather(const Scene& scene, const std::array<int, 4>& vertices) {
 // Every sample query, and every stride-th candidate of each scene.
 std::vector<LabeledQuery> shared_queries(std::size_t scene_stride) {
   std::vector<LabeledQuery> all;
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(kData / "sample-queries")) {
-    if (entry.path().extension() != ".csv") continue;
-    const std::optional<Kind> kind = kind_from_path(entry.path());
+  for (const std::filesystem::path& path : testing::shared_query_files()) {
+    const std::optional<Kind> kind = kind_from_path(path);
     if (!kind) continue;
-    const QueryFile file = read_query_csv(entry.path(), *kind);
+    const QueryFile file = read_query_csv(path, *kind);
     for (std::size_t i = 0; i < file.queries.size(); ++i)
       all.push_back({*kind, file.queries[i], file.truth.value().at(i)});
   }
-  for (const auto& entry : std::filesystem::directory_iterator(kData / "scenes")) {
-    if (!is_scene_directory(entry.path())) continue;
-    const Scene scene = read_scene(entry.path());
+  for (const std::filesystem::path& directory : testing::shared_scene_directories()) {
+    const Scene scene = read_scene(directory);
     const auto& vf = scene.candidates.vertex_face;
     for (std::size_t i = 0; i < vf.size(); i += scene_stride) {
       const auto [vertex, face] = vf[i];

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "batchccd/io.hpp"
+#include "shared_data.hpp"
 #include "temporary_directory.hpp"
 
 namespace batchccd {
@@ -855,14 +856,13 @@ const fs::path shared_data = BATCHCCD_SHARED_DATA;
 TEST(SharedDataTest, EverySampleQueryFileReads) {
   SKIP_WITHOUT_SHARED_DATA("sample-queries");
   int files = 0;
-  for (const auto& entry : fs::recursive_directory_iterator(shared_data / "sample-queries")) {
-    if (entry.path().extension() != ".csv") continue;
-    const std::optional<Kind> kind = kind_from_path(entry.path());
-    ASSERT_TRUE(kind.has_value()) << entry.path();
-    EXPECT_EQ(*kind, entry.path().parent_path().filename() == "vertex-face" ? Kind::vertex_face : Kind::edge_edge);
-    const QueryFile file = read_query_csv(entry.path(), *kind);
-    EXPECT_FALSE(file.queries.empty()) << entry.path();
-    ASSERT_TRUE(file.truth.has_value()) << entry.path();
+  for (const fs::path& path : testing::shared_query_files()) {
+    const std::optional<Kind> kind = kind_from_path(path);
+    ASSERT_TRUE(kind.has_value()) << path;
+    EXPECT_EQ(*kind, path.parent_path().filename() == "vertex-face" ? Kind::vertex_face : Kind::edge_edge);
+    const QueryFile file = read_query_csv(path, *kind);
+    EXPECT_FALSE(file.queries.empty()) << path;
+    ASSERT_TRUE(file.truth.has_value()) << path;
     EXPECT_EQ(file.truth->size(), file.queries.size());
     ++files;
   }
@@ -922,10 +922,9 @@ void expect_queries_match_mesh(const fs::path& directory, int& compared) {
 TEST(SharedDataTest, SceneQueryFilesMatchTheirMeshes) {
   SKIP_WITHOUT_SHARED_DATA("scenes");
   int scenes = 0, compared = 0, query_files = 0;
-  for (const auto& entry : fs::directory_iterator(shared_data / "scenes")) {
-    if (!is_scene_directory(entry.path())) continue;
-    expect_queries_match_mesh(entry.path(), compared);
-    for (const auto& file : fs::directory_iterator(entry.path()))
+  for (const fs::path& directory : testing::shared_scene_directories()) {
+    expect_queries_match_mesh(directory, compared);
+    for (const auto& file : fs::directory_iterator(directory))
       query_files += file.path().filename().string().starts_with("queries_");
     ++scenes;
   }

@@ -14,6 +14,7 @@
 #include "batchccd/lab.hpp"
 #include "simd/filter.hpp"
 #include "same_answers.hpp"
+#include "shared_data.hpp"
 
 namespace batchccd {
 namespace {
@@ -320,8 +321,7 @@ TEST(SimdKernels, SecondPassEvaluatesTheSurvivorsItIsGiven) {
 
 // Every instruction set gives the same final answers as the scalar path.
 TEST(SimdKernels, FinalDecisionsAreIdenticalOnSharedData) {
-  const std::filesystem::path data = BATCHCCD_SHARED_DATA;
-  if (!std::filesystem::is_directory(data)) GTEST_SKIP() << data << " is absent";
+  if (!testing::shared_data_present()) GTEST_SKIP() << testing::kSharedData << " is absent";
   const auto kernels = vector_kernels();
   if (kernels.empty()) GTEST_SKIP() << "no vector instruction set on this processor";
   auto same = [](const BatchResult& a, const BatchResult& b, const std::string& what) {
@@ -338,24 +338,20 @@ TEST(SimdKernels, FinalDecisionsAreIdenticalOnSharedData) {
     scalar.isa = Isa::scalar;
     vector.isa = k->isa;
     const lab::Settings stages{.filter_pieces = 4, .swept_box_filter = true};
-    for (const auto& entry : std::filesystem::recursive_directory_iterator(data / "sample-queries")) {
-      if (entry.path().extension() != ".csv") continue;
-      const QueryFile file = read_query_csv(entry.path(), *kind_from_path(entry.path()));
+    for (const std::filesystem::path& path : testing::shared_query_files()) {
+      const QueryFile file = read_query_csv(path, *kind_from_path(path));
       same(lab::batch_ccd(file.kind, file.queries, scalar, stages),
-           lab::batch_ccd(file.kind, file.queries, vector, stages),
-           entry.path().string() + " " + to_string(k->isa));
+           lab::batch_ccd(file.kind, file.queries, vector, stages), path.string() + " " + to_string(k->isa));
       ++inputs;
     }
-    for (const auto& entry : std::filesystem::directory_iterator(data / "scenes")) {
-      if (!is_scene_directory(entry.path())) continue;
-      const Scene scene = read_scene(entry.path());
+    for (const std::filesystem::path& directory : testing::shared_scene_directories()) {
+      const Scene scene = read_scene(directory);
       const MeshView mesh{scene.positions_t0, scene.positions_t1, scene.faces};
       same(lab::mesh_ccd(mesh, scene.candidates, scalar, stages),
-           lab::mesh_ccd(mesh, scene.candidates, vector, stages),
-           entry.path().string() + " " + to_string(k->isa));
+           lab::mesh_ccd(mesh, scene.candidates, vector, stages), directory.string() + " " + to_string(k->isa));
       ++inputs;
     }
-    EXPECT_GT(inputs, 0u) << "no query file or scene under " << data;
+    EXPECT_GT(inputs, 0u) << "no query file or scene under " << testing::kSharedData;
   }
 }
 
