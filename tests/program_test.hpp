@@ -3,10 +3,9 @@
 // Running a built program from a test, in a temporary directory of its own:
 // what the tool's tests (test_cli.cpp) and the report's (test_report.cpp)
 // share.
+#include <array>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -31,6 +30,50 @@ inline std::vector<std::string> lines_of(const std::string& text) {
   for (std::string line; std::getline(in, line);) lines.push_back(line);
   return lines;
 }
+
+// Query files both programs read: hits and misses in quarters, with truth.
+
+// A point in quarters: (x, y, z) / 4, so 0.25 is 1.
+struct QuarterPoint {
+  int x, y, z;
+};
+using QueryPoints = std::array<QuarterPoint, 8>;
+
+// The vertex falls through the static triangle (0,0,0), (1,0,0), (0,1,0) at t = 1/2.
+constexpr QueryPoints vertex_face_hit{{{1, 1, 4}, {0, 0, 0}, {4, 0, 0}, {0, 4, 0},
+                                       {1, 1, -4}, {0, 0, 0}, {4, 0, 0}, {0, 4, 0}}};
+// The vertex stays far from the triangle.
+constexpr QueryPoints vertex_face_miss{{{40, 40, 40}, {0, 0, 0}, {4, 0, 0}, {0, 4, 0},
+                                        {40, 40, 40}, {0, 0, 0}, {4, 0, 0}, {0, 4, 0}}};
+// Edge a sweeps down through the static edge b on the x axis at t = 1/2.
+constexpr QueryPoints edge_edge_hit{{{2, -4, 4}, {2, 4, 4}, {0, 0, 0}, {4, 0, 0},
+                                     {2, -4, -4}, {2, 4, -4}, {0, 0, 0}, {4, 0, 0}}};
+// Edge a stays far above edge b.
+constexpr QueryPoints edge_edge_miss{{{2, -4, 40}, {2, 4, 40}, {0, 0, 0}, {4, 0, 0},
+                                      {2, -4, 40}, {2, 4, 40}, {0, 0, 0}, {4, 0, 0}}};
+
+struct TestQuery {
+  QueryPoints points;
+  bool truth;
+};
+
+// 7 columns with truth, 6 without.
+inline std::string query_csv(const std::vector<TestQuery>& queries, bool with_truth = true) {
+  std::ostringstream text;
+  for (const TestQuery& query : queries) {
+    for (const QuarterPoint& point : query.points) {
+      text << point.x << ",4," << point.y << ",4," << point.z << ",4";
+      if (with_truth) text << ',' << (query.truth ? 1 : 0);
+      text << '\n';
+    }
+  }
+  return text.str();
+}
+
+inline const std::string vertex_face_hit_and_miss =
+    query_csv({{vertex_face_hit, true}, {vertex_face_miss, false}});
+inline const std::string edge_edge_hit_and_miss =
+    query_csv({{edge_edge_hit, true}, {edge_edge_miss, false}});
 
 // A small scene: triangle 0-1-2 with vertex 3 falling through it; edge 4-5
 // sweeping down through edge 0-1; vertices 6, 7 far away and still.

@@ -34,8 +34,18 @@
 namespace {
 
 namespace fs = std::filesystem;
+using program_test::edge_edge_hit;
+using program_test::edge_edge_hit_and_miss;
+using program_test::edge_edge_miss;
 using program_test::lines_of;
+using program_test::query_csv;
+using program_test::QuarterPoint;
+using program_test::QueryPoints;
 using program_test::read_file;
+using program_test::TestQuery;
+using program_test::vertex_face_hit;
+using program_test::vertex_face_hit_and_miss;
+using program_test::vertex_face_miss;
 using program_test::write_file;
 using batchccd::Kind;
 using batchccd::cli::InputReport;
@@ -43,48 +53,6 @@ using batchccd::cli::RunOutcome;
 using batchccd::cli::RunSettings;
 
 // ---- query files ----------------------------------------------------------
-
-// A point in quarters: (x, y, z) / 4, so 0.25 is 1.
-struct QuarterPoint {
-  int x, y, z;
-};
-using QueryPoints = std::array<QuarterPoint, 8>;
-
-// The vertex falls through the static triangle (0,0,0), (1,0,0), (0,1,0) at t = 1/2.
-constexpr QueryPoints vertex_face_hit{{{1, 1, 4}, {0, 0, 0}, {4, 0, 0}, {0, 4, 0},
-                                       {1, 1, -4}, {0, 0, 0}, {4, 0, 0}, {0, 4, 0}}};
-// The vertex stays far from the triangle.
-constexpr QueryPoints vertex_face_miss{{{40, 40, 40}, {0, 0, 0}, {4, 0, 0}, {0, 4, 0},
-                                        {40, 40, 40}, {0, 0, 0}, {4, 0, 0}, {0, 4, 0}}};
-// Edge a sweeps down through the static edge b on the x axis at t = 1/2.
-constexpr QueryPoints edge_edge_hit{{{2, -4, 4}, {2, 4, 4}, {0, 0, 0}, {4, 0, 0},
-                                     {2, -4, -4}, {2, 4, -4}, {0, 0, 0}, {4, 0, 0}}};
-// Edge a stays far above edge b.
-constexpr QueryPoints edge_edge_miss{{{2, -4, 40}, {2, 4, 40}, {0, 0, 0}, {4, 0, 0},
-                                      {2, -4, 40}, {2, 4, 40}, {0, 0, 0}, {4, 0, 0}}};
-
-struct TestQuery {
-  QueryPoints points;
-  bool truth;
-};
-
-// 7 columns with truth, 6 without.
-std::string query_csv(const std::vector<TestQuery>& queries, bool with_truth = true) {
-  std::ostringstream text;
-  for (const TestQuery& query : queries) {
-    for (const QuarterPoint& point : query.points) {
-      text << point.x << ",4," << point.y << ",4," << point.z << ",4";
-      if (with_truth) text << ',' << (query.truth ? 1 : 0);
-      text << '\n';
-    }
-  }
-  return text.str();
-}
-
-const std::string vertex_face_hit_and_miss =
-    query_csv({{vertex_face_hit, true}, {vertex_face_miss, false}});
-const std::string edge_edge_hit_and_miss =
-    query_csv({{edge_edge_hit, true}, {edge_edge_miss, false}});
 
 // A query of a point kind: its points at t0, then at t1, each once (ve 6
 // rows, vv 4), with its truth.

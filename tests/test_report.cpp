@@ -27,23 +27,11 @@
 namespace {
 
 namespace fs = std::filesystem;
+using program_test::edge_edge_hit_and_miss;
 using program_test::lines_of;
 using program_test::read_file;
+using program_test::vertex_face_hit_and_miss;
 using program_test::write_file;
-
-// The vertex falls through the static triangle at t = 1/2 (truth 1), then
-// stays far from it (truth 0); the same for two edges. Coordinates in quarters.
-const std::string vertex_face_hit_and_miss =
-    "1,4,1,4,4,4,1\n0,4,0,4,0,4,1\n4,4,0,4,0,4,1\n0,4,4,4,0,4,1\n"
-    "1,4,1,4,-4,4,1\n0,4,0,4,0,4,1\n4,4,0,4,0,4,1\n0,4,4,4,0,4,1\n"
-    "40,4,40,4,40,4,0\n0,4,0,4,0,4,0\n4,4,0,4,0,4,0\n0,4,4,4,0,4,0\n"
-    "40,4,40,4,40,4,0\n0,4,0,4,0,4,0\n4,4,0,4,0,4,0\n0,4,4,4,0,4,0\n";
-const std::string edge_edge_hit_and_miss =
-    "2,4,-4,4,4,4,1\n2,4,4,4,4,4,1\n0,4,0,4,0,4,1\n4,4,0,4,0,4,1\n"
-    "2,4,-4,4,-4,4,1\n2,4,4,4,-4,4,1\n0,4,0,4,0,4,1\n4,4,0,4,0,4,1\n"
-    "2,4,-4,4,40,4,0\n2,4,4,4,40,4,0\n0,4,0,4,0,4,0\n4,4,0,4,0,4,0\n"
-    "2,4,-4,4,40,4,0\n2,4,4,4,40,4,0\n0,4,0,4,0,4,0\n4,4,0,4,0,4,0\n";
-
 
 using ReportRun = program_test::ProgramRun;
 
