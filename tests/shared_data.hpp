@@ -25,6 +25,29 @@ inline bool shared_data_present() {
          std::filesystem::is_directory(kSharedData / "scenes");
 }
 
+// The one traversal of the reference data, each list sorted: every *.csv
+// under sample-queries (its kind named by its path), and every scene
+// directory under scenes. Empty where the data is absent.
+inline std::vector<std::filesystem::path> shared_query_files() {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> files;
+  if (!fs::is_directory(kSharedData / "sample-queries")) return files;
+  for (const auto& entry : fs::recursive_directory_iterator(kSharedData / "sample-queries"))
+    if (entry.path().extension() == ".csv") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+inline std::vector<std::filesystem::path> shared_scene_directories() {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> scenes;
+  if (!fs::is_directory(kSharedData / "scenes")) return scenes;
+  for (const auto& entry : fs::directory_iterator(kSharedData / "scenes"))
+    if (is_scene_directory(entry.path())) scenes.push_back(entry.path());
+  std::sort(scenes.begin(), scenes.end());
+  return scenes;
+}
+
 // One input and kind, run once.
 struct DataRun {
   std::string input;
@@ -54,6 +77,9 @@ DataRun timed_run(std::string input, Kind kind, std::optional<std::vector<bool>>
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   run.results = std::move(result.results);
   run.counters = result.counters;
+  if (run.truth) {
+    EXPECT_EQ(run.results.size(), run.truth->size()) << run.input << " " << to_string(kind);
+  }
   return run;
 }
 
@@ -67,16 +93,8 @@ inline std::vector<DataRun> run_shared_data(const lab::Method& method, Options o
   namespace fs = std::filesystem;
   options.per_candidate_results = true;
   options.time_queries = true;
-  std::vector<fs::path> files, scenes;
-  for (const auto& entry : fs::recursive_directory_iterator(kSharedData / "sample-queries"))
-    if (entry.path().extension() == ".csv") files.push_back(entry.path());
-  for (const auto& entry : fs::directory_iterator(kSharedData / "scenes"))
-    if (is_scene_directory(entry.path())) scenes.push_back(entry.path());
-  std::sort(files.begin(), files.end());
-  std::sort(scenes.begin(), scenes.end());
-
   std::vector<DataRun> runs;
-  for (const fs::path& file : files) {
+  for (const fs::path& file : shared_query_files()) {
     const std::optional<Kind> kind = kind_from_path(file);
     EXPECT_TRUE(kind.has_value()) << file << " names no kind";
     if (!kind) continue;
@@ -84,13 +102,14 @@ inline std::vector<DataRun> run_shared_data(const lab::Method& method, Options o
     runs.push_back(timed_run(file.string(), *kind, queries.truth,
                              [&] { return lab::batch_ccd(*kind, queries.queries, options, settings); }));
   }
-  for (const fs::path& directory : scenes) {
+  for (const fs::path& directory : shared_scene_directories()) {
     const Scene scene = read_scene(directory);
     const MeshView mesh{scene.positions_t0, scene.positions_t1, scene.faces};
     for (const Kind kind : {Kind::vertex_face, Kind::edge_edge}) {
       Options one_kind = options;
       one_kind.vertex_face = kind == Kind::vertex_face;
       one_kind.edge_edge = kind == Kind::edge_edge;
+      one_kind.vertex_edge = one_kind.vertex_vertex = false;  // their results would follow this kind's
       runs.push_back(timed_run(directory.string(), kind,
                                one_kind.vertex_face ? scene.vertex_face_truth : scene.edge_edge_truth,
                                [&] { return lab::mesh_ccd(mesh, scene.candidates, one_kind, settings); }));

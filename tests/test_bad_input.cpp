@@ -15,9 +15,9 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -25,12 +25,11 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include <gtest/gtest.h>
 
 #include "batchccd/batchccd.hpp"
 #include "batchccd/lab.hpp"
+#include "temporary_directory.hpp"
 
 namespace {
 
@@ -212,6 +211,92 @@ TEST(BadInputNonFinite, CountersAndEarliestToiWithoutPerCandidateResults) {
   EXPECT_EQ(batch.counters.candidates, 7);
   EXPECT_EQ(batch.counters.invalid, 3);
   EXPECT_EQ(batch.earliest_toi, 0.0);
+}
+
+// The point kinds: a non-finite coordinate of any point they read makes the
+// query invalid, through the single calls and in a batch, whose valid query
+// keeps its answer alone.
+TEST(BadInputNonFinite, PointKindsFlagEveryNonFiniteCoordinate) {
+  // The point falls through the segment [0, 4] of the x axis, or onto the
+  // still point (2, 0, 0), at t = 1/2.
+  for (const Kind kind : {Kind::vertex_edge, Kind::vertex_vertex}) {
+    const bool edge = kind == Kind::vertex_edge;
+    const std::vector<Vec3> start = edge ? std::vector{Vec3(2, 0, 4), Vec3(0, 0, 0), Vec3(4, 0, 0)}
+                                         : std::vector{Vec3(2, 0, 4), Vec3(2, 0, 0)};
+    std::vector<Vec3> end = start;
+    end[0].z() = -4;
+    const std::size_t count = start.size();
+    const Query valid = batchccd::make_query(kind, start, end);
+    expect_hit_at(batchccd::query_ccd(kind, valid), 0.5);
+    for (const double bad : kNonFinite)
+      for (std::size_t point = 0; point < 2 * count; ++point)
+        for (int axis = 0; axis < 3; ++axis) {
+          SCOPED_TRACE(std::string(batchccd::to_string(kind)) + " point " + std::to_string(point) + " axis " +
+                       std::to_string(axis) + " = " + std::to_string(bad));
+          std::vector<Vec3> t0 = start, t1 = end;
+          (point < count ? t0[point] : t1[point - count])[axis] = bad;
+          const Query spoiled = batchccd::make_query(kind, t0, t1);
+          if (edge)
+            expect_invalid(batchccd::vertex_edge_ccd(t0[0], t0[1], t0[2], t1[0], t1[1], t1[2]));
+          else
+            expect_invalid(batchccd::vertex_vertex_ccd(t0[0], t0[1], t1[0], t1[1]));
+          for (const Mode mode : kCertifiedModes) {
+            const BatchResult batch = batchccd::batch_ccd(kind, std::vector{spoiled, valid}, with_mode(mode));
+            expect_invalid(batch.results[0]);
+            expect_hit_at(batch.results[1], 0.5);
+            EXPECT_EQ(batch.counters.invalid, 1);
+          }
+        }
+  }
+}
+
+// The hit list names an invalid query as a hit at 0 with its status.
+TEST(BadInputNonFinite, HitListFlagsTheInvalidQuery) {
+  Options options;
+  options.hit_list = true;
+  const std::vector<Query> queries = {kVertexFaceMiss, with_coordinate(kVertexFaceMiss, 13, kNaN), kVertexFaceHit};
+  const BatchResult batch = batchccd::batch_ccd(Kind::vertex_face, queries, options);
+  ASSERT_EQ(batch.hits.size(), 2u);
+  EXPECT_EQ(batch.hits[0].candidate, 1u);
+  EXPECT_EQ(batch.hits[0].status, Status::invalid_input);
+  EXPECT_EQ(batch.hits[0].toi, 0.0);
+  EXPECT_EQ(batch.hits[1].candidate, 2u);
+  EXPECT_EQ(batch.hits[1].status, Status::ok);
+  EXPECT_EQ(batch.hits[1].toi, batch.results[2].toi);
+}
+
+// An instruction set this processor or build lacks is refused by every
+// batch call, naming it; one it has runs.
+TEST(BadInputOptions, AnUnavailableInstructionSetIsRefusedByName) {
+  const std::vector<Isa> available = batchccd::available_isas();
+  ASSERT_FALSE(available.empty());
+  EXPECT_EQ(available.front(), Isa::scalar);
+  const Eigen::MatrixXd positions = Eigen::MatrixXd::Zero(3, 3);
+  const Eigen::MatrixXi faces = Eigen::MatrixXi::Zero(0, 3);
+  int refused = 0;
+  for (const Isa isa : {Isa::scalar, Isa::sse4, Isa::avx2, Isa::avx512}) {
+    Options options;
+    options.isa = isa;
+    const std::vector<Query> queries{kVertexFaceHit};
+    if (std::find(available.begin(), available.end(), isa) != available.end()) {
+      EXPECT_EQ(batchccd::resolve_isa(isa), isa);
+      expect_hit_at(batchccd::batch_ccd(Kind::vertex_face, queries, options).results[0], 0.5);
+      continue;
+    }
+    ++refused;
+    for (const auto& call : std::vector<std::function<void()>>{
+             [&] { batchccd::resolve_isa(isa); },
+             [&] { batchccd::batch_ccd(Kind::vertex_face, queries, options); },
+             [&] { batchccd::mesh_ccd({positions, positions, faces}, batchccd::CandidateLists{}, options); }}) {
+      try {
+        call();
+        ADD_FAILURE() << batchccd::to_string(isa) << " accepted";
+      } catch (const std::invalid_argument& error) {
+        EXPECT_NE(std::string(error.what()).find(batchccd::to_string(isa)), std::string::npos) << error.what();
+      }
+    }
+  }
+  std::printf("[ record   ] %d of 3 vector instruction sets unavailable here\n", refused);
 }
 
 // ---------------------------------------------------------------------------
@@ -569,10 +654,7 @@ TEST(BadInputMesh, MeshWithoutFacesServesEdgeEdgeCandidates) {
 // ---------------------------------------------------------------------------
 // Bad files: the readers refuse them naming file and line, before anything runs.
 
-void write_file(const fs::path& path, const std::string& content) {
-  fs::create_directories(path.parent_path());
-  std::ofstream(path, std::ios::binary) << content;
-}
+using test_support::write_file;
 
 // A query file of the given queries, coordinates as integers over 1.
 std::string query_csv(const std::vector<Query>& queries) {
@@ -582,19 +664,8 @@ std::string query_csv(const std::vector<Query>& queries) {
   return text.str();
 }
 
-class BadInputFiles : public ::testing::Test {
+class BadInputFiles : public test_support::TemporaryDirectoryTest {
  protected:
-  void SetUp() override {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    directory_ = fs::temp_directory_path() /
-                 ("batchccd_bad_input_" + std::string(test->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(directory_);
-    fs::create_directories(directory_);
-  }
-  void TearDown() override { fs::remove_all(directory_); }
-
-  fs::path path(const std::string& relative) const { return directory_ / relative; }
-
   // The InputError `read` throws; fails the test when it throws none.
   template <class Read>
   static std::optional<batchccd::InputError> error_of(Read read) {
@@ -606,8 +677,6 @@ class BadInputFiles : public ::testing::Test {
     ADD_FAILURE() << "no InputError";
     return std::nullopt;
   }
-
-  fs::path directory_;
 };
 
 TEST_F(BadInputFiles, SceneWithAnOutOfRangeCandidateNamesItsLine) {

@@ -34,8 +34,18 @@
 namespace {
 
 namespace fs = std::filesystem;
+using program_test::edge_edge_hit;
+using program_test::edge_edge_hit_and_miss;
+using program_test::edge_edge_miss;
 using program_test::lines_of;
+using program_test::query_csv;
+using program_test::QuarterPoint;
+using program_test::QueryPoints;
 using program_test::read_file;
+using program_test::TestQuery;
+using program_test::vertex_face_hit;
+using program_test::vertex_face_hit_and_miss;
+using program_test::vertex_face_miss;
 using program_test::write_file;
 using batchccd::Kind;
 using batchccd::cli::InputReport;
@@ -43,48 +53,6 @@ using batchccd::cli::RunOutcome;
 using batchccd::cli::RunSettings;
 
 // ---- query files ----------------------------------------------------------
-
-// A point in quarters: (x, y, z) / 4, so 0.25 is 1.
-struct QuarterPoint {
-  int x, y, z;
-};
-using QueryPoints = std::array<QuarterPoint, 8>;
-
-// The vertex falls through the static triangle (0,0,0), (1,0,0), (0,1,0) at t = 1/2.
-constexpr QueryPoints vertex_face_hit{{{1, 1, 4}, {0, 0, 0}, {4, 0, 0}, {0, 4, 0},
-                                       {1, 1, -4}, {0, 0, 0}, {4, 0, 0}, {0, 4, 0}}};
-// The vertex stays far from the triangle.
-constexpr QueryPoints vertex_face_miss{{{40, 40, 40}, {0, 0, 0}, {4, 0, 0}, {0, 4, 0},
-                                        {40, 40, 40}, {0, 0, 0}, {4, 0, 0}, {0, 4, 0}}};
-// Edge a sweeps down through the static edge b on the x axis at t = 1/2.
-constexpr QueryPoints edge_edge_hit{{{2, -4, 4}, {2, 4, 4}, {0, 0, 0}, {4, 0, 0},
-                                     {2, -4, -4}, {2, 4, -4}, {0, 0, 0}, {4, 0, 0}}};
-// Edge a stays far above edge b.
-constexpr QueryPoints edge_edge_miss{{{2, -4, 40}, {2, 4, 40}, {0, 0, 0}, {4, 0, 0},
-                                      {2, -4, 40}, {2, 4, 40}, {0, 0, 0}, {4, 0, 0}}};
-
-struct TestQuery {
-  QueryPoints points;
-  bool truth;
-};
-
-// 7 columns with truth, 6 without.
-std::string query_csv(const std::vector<TestQuery>& queries, bool with_truth = true) {
-  std::ostringstream text;
-  for (const TestQuery& query : queries) {
-    for (const QuarterPoint& point : query.points) {
-      text << point.x << ",4," << point.y << ",4," << point.z << ",4";
-      if (with_truth) text << ',' << (query.truth ? 1 : 0);
-      text << '\n';
-    }
-  }
-  return text.str();
-}
-
-const std::string vertex_face_hit_and_miss =
-    query_csv({{vertex_face_hit, true}, {vertex_face_miss, false}});
-const std::string edge_edge_hit_and_miss =
-    query_csv({{edge_edge_hit, true}, {edge_edge_miss, false}});
 
 // A query of a point kind: its points at t0, then at t1, each once (ve 6
 // rows, vv 4), with its truth.
@@ -162,7 +130,7 @@ class CliTest : public program_test::ProgramTest {
 
   std::vector<fs::path> files_containing(const std::string& fragment) const {
     std::vector<fs::path> found;
-    for (const auto& entry : fs::recursive_directory_iterator(temporary_)) {
+    for (const auto& entry : fs::recursive_directory_iterator(directory())) {
       if (entry.path().filename().string().find(fragment) != std::string::npos)
         found.push_back(entry.path());
     }
@@ -275,18 +243,6 @@ TEST_F(CliTest, DoubleDashEndsTheOptions) {
   EXPECT_EQ(objects[0].at("input"), "-vf.csv");
 }
 
-// What batchccd::validate says of these options after the field's name
-// (the tool names its flag instead), or "" when it accepts them.
-std::string validate_message(const batchccd::Options& options) {
-  try {
-    batchccd::validate(options);
-  } catch (const std::invalid_argument& error) {
-    const std::string message = error.what();
-    return message.substr(message.find(" must be"));
-  }
-  return {};
-}
-
 TEST_F(CliTest, BadMinDistanceOrTmaxExitsTwoNamingOptionAndValue) {
   write_file(path("vf/q.csv"), vertex_face_hit_and_miss);
   struct Case {
@@ -294,23 +250,18 @@ TEST_F(CliTest, BadMinDistanceOrTmaxExitsTwoNamingOptionAndValue) {
     std::string option;
     std::string problem;  // besides the option
   };
-  const auto refused = [](double min_distance, double tmax) {
-    batchccd::Options options;
-    options.min_distance = min_distance;
-    options.tmax = tmax;
-    return validate_message(options);
-  };
+  // The library's words (options.hpp, validate) after the flag's name.
   const std::vector<Case> cases = {
-      {{"--min-distance", "-1"}, "--min-distance", refused(-1, 1)},
-      {{"--min-distance=-0.5"}, "--min-distance", refused(-0.5, 1)},
-      {{"--min-distance", "nan"}, "--min-distance", refused(std::nan(""), 1)},
-      {{"--min-distance", "inf"}, "--min-distance", refused(std::numeric_limits<double>::infinity(), 1)},
+      {{"--min-distance", "-1"}, "--min-distance", "--min-distance must be >= 0 and finite, got -1"},
+      {{"--min-distance=-0.5"}, "--min-distance", "--min-distance must be >= 0 and finite, got -0.5"},
+      {{"--min-distance", "nan"}, "--min-distance", "--min-distance must be >= 0 and finite, got nan"},
+      {{"--min-distance", "inf"}, "--min-distance", "--min-distance must be >= 0 and finite, got inf"},
       {{"--min-distance", "1e999"}, "--min-distance", "'1e999' is out of the range of a double"},
       {{"--min-distance", "tiny"}, "--min-distance", "needs a number, not 'tiny'"},
       {{"--min-distance", "1e-3x"}, "--min-distance", "needs a number, not '1e-3x'"},
-      {{"--tmax", "0"}, "--tmax", refused(0, 0)},
-      {{"--tmax", "1.5"}, "--tmax", refused(0, 1.5)},
-      {{"--tmax=-0.25"}, "--tmax", refused(0, -0.25)},
+      {{"--tmax", "0"}, "--tmax", "--tmax must be in (0, 1], got 0"},
+      {{"--tmax", "1.5"}, "--tmax", "--tmax must be in (0, 1], got 1.5"},
+      {{"--tmax=-0.25"}, "--tmax", "--tmax must be in (0, 1], got -0.25"},
       {{"--tmax", ""}, "--tmax", "needs a number, not ''"},
   };
   for (const Case& bad : cases) {
@@ -320,7 +271,6 @@ TEST_F(CliTest, BadMinDistanceOrTmaxExitsTwoNamingOptionAndValue) {
     const CliRun result = run_cli(arguments);
     std::string shown;
     for (const auto& argument : arguments) shown += argument + " ";
-    ASSERT_FALSE(bad.problem.empty()) << shown;  // validate refuses the value
     EXPECT_EQ(result.exit_code, 2) << shown << "\n" << result.err;
     EXPECT_NE(result.err.find("batchccd run: " + bad.option), std::string::npos) << shown << "\n" << result.err;
     EXPECT_NE(result.err.find(bad.problem), std::string::npos) << shown << "\n" << result.err;
@@ -494,9 +444,8 @@ TEST_F(CliTest, JsonCountsExactEscalationsAndTheSlowestQueryInEveryMode) {
     EXPECT_EQ(object.at("mode"), mode);
     EXPECT_EQ(object.at("false_positives"), "0") << mode;
     EXPECT_EQ(object.at("false_negatives"), "0") << mode;
-    const double slowest = std::stod(object.at("max_query_seconds"));
-    EXPECT_GE(slowest, 0.0) << mode;
-    EXPECT_LE(slowest, std::stod(object.at("seconds"))) << mode;
+    // Timed: a number, not null (what it measures is the benchmarks' business).
+    EXPECT_NE(object.at("max_query_seconds"), "null") << mode;
     // Exact arithmetic here at most for the hit's TOI.
     EXPECT_LE(std::stoi(object.at("exact_escalations")), 1) << mode;
   }
@@ -1030,6 +979,8 @@ TEST(CliSharedData, SampleQueriesAndScenesRunWithTruth) {
     query_files += entry.path().extension() == ".csv" ? 1 : 0;
   for (const auto& entry : fs::directory_iterator(data / "scenes"))
     scenes += batchccd::is_scene_directory(entry.path()) ? 1 : 0;
+  ASSERT_GT(query_files, 0u);
+  ASSERT_GT(scenes, 0u);
 
   RunSettings settings;
   settings.inputs = {data / "sample-queries", data / "scenes"};

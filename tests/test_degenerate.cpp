@@ -5,9 +5,11 @@
 //
 // Conservative mode must get every case right: the hit, and for a hit a time
 // of impact that is never after the true first contact and within 1e-6 of
-// it. The fast and cubic baselines may miss degenerate contacts; for them only
+// it; exact mode too, within 2^-40. Each derived contact time is checked by
+// the exact distance there (tests/exact_distance.hpp). The fast and cubic baselines may miss degenerate contacts; for them only
 // sanity is checked (no NaN, toi in [0, 1] on a hit, +inf otherwise), except
 // on the clean cases at the end, where all three must agree.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -17,6 +19,7 @@
 
 #include "batchccd/ccd.hpp"
 #include "batchccd/lab.hpp"
+#include "exact_distance.hpp"
 
 namespace {
 
@@ -105,6 +108,25 @@ void check(Kind kind, const Query& q, std::optional<double> true_toi,
   const QueryResult generic = batchccd::query_ccd(kind, q, with_mode(Mode::conservative));
   EXPECT_EQ(generic.hit, r.hit);
   EXPECT_EQ(generic.toi, r.toi);
+  // Exact mode: exact arithmetic's decision, a TOI less than 2^-40 before
+  // the contact (true_toi is the double nearest it: one rounding either way).
+  const QueryResult exact = run(kind, q, with_mode(Mode::exact));
+  EXPECT_EQ(exact.status, Status::ok);
+  EXPECT_EQ(exact.hit, true_toi.has_value()) << "exact mode";
+  if (exact.hit && true_toi) {
+    EXPECT_LE(exact.toi, std::nextafter(*true_toi, 1.0)) << "exact mode's toi after the first contact";
+    EXPECT_LT(*true_toi - exact.toi, 0x1p-40) << "exact mode's toi = " << exact.toi;
+  }
+  // The derivation itself: at true_toi the primitives touch, by the exact
+  // distance there (within what true_toi's rounding moves them).
+  if (true_toi) {
+    double extent = 0;
+    for (const Vec3& a : q.points)
+      for (const Vec3& b : q.points) extent = std::max(extent, (a - b).cwiseAbs().maxCoeff());
+    const batchccd::testing::Rational reach = 0x1p-45 * extent;
+    EXPECT_LE(batchccd::testing::squared_distance_at(kind, q, *true_toi), reach * reach)
+        << "the primitives do not touch at t = " << *true_toi;
+  }
   // The fast and cubic baselines: no correctness promise on degenerate
   // input, but no garbage.
   {

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -20,12 +19,14 @@
 
 #include "batchccd/batchccd.hpp"
 #include "batchccd/lab.hpp"
+#include "exact_distance.hpp"
 #include "exact/exact_solver.hpp"
 #include "exact/polynomial.hpp"
 #include "exact/root_isolation.hpp"
 #include "reference/inclusion_solver.hpp"
 #include "reference/reference.hpp"
 #include "reference/scaled_query.hpp"
+#include "same_answers.hpp"
 #include "shared_data.hpp"
 
 namespace batchccd {
@@ -194,13 +195,21 @@ void check_ee(const Query& q, std::optional<long double> true_toi) {
 }
 const std::optional<long double> kMiss = std::nullopt;
 
-// Whether conservative mode's floating-point search alone (no exact stage
-// within its iterations) reports a contact: the near misses below are ones
-// it reports within tolerance, and exact mode must not.
-bool conservative_hit(Kind kind, const Query& q) {
+// Conservative mode's floating-point search alone (no exact stage within
+// its iterations) on the near misses below: it may report them, as its
+// promise allows, but only with the primitives within tolerance of each
+// other at the reported TOI (the exact distance there, against 4 tolerance
+// times the widest extent of the query's points); exact mode must not.
+void expect_conservative_only_within_tolerance(Kind kind, const Query& q) {
   Options options;
   options.exact_stage_iterations = options.max_iterations;
-  return lab::query_ccd(kind, q, options, kGenericSearch).hit;
+  const QueryResult r = lab::query_ccd(kind, q, options, kGenericSearch);
+  if (!r.hit) return;
+  double extent = 0;
+  for (const Vec3& a : q.points)
+    for (const Vec3& b : q.points) extent = std::max(extent, (a - b).cwiseAbs().maxCoeff());
+  const testing::Rational reach = 4 * options.tolerance * extent;
+  EXPECT_LE(testing::squared_distance_at(kind, q, r.toi), reach * reach) << "a hit at " << r.toi;
 }
 
 // The right triangle x, y >= 0, x + y <= 4 in the plane z = 0.
@@ -217,7 +226,7 @@ TEST(ExactCoplanarMotion, VertexSlidesIntoTriangle) {
 TEST(ExactCoplanarMotion, VertexSlidesPastApexByATinyGap) {
   // p(t) = (-2 + 4t, 4 + 2^-50, 0) passes 2^-50 above the apex (0, 4, 0).
   const Query q = make(V(-2, 4 + kTiny, 0), A, B, C, V(2, 4 + kTiny, 0), A, B, C);
-  EXPECT_TRUE(conservative_hit(Kind::vertex_face, q)) << "no longer a near miss for conservative";
+  expect_conservative_only_within_tolerance(Kind::vertex_face, q);
   check_vf(q, kMiss);
 }
 
@@ -264,7 +273,7 @@ TEST(ExactDegenerateTriangle, CollapsesToASegmentWhereTheVertexLands) {
 TEST(ExactDegenerateTriangle, CollapsesToASegmentBesideTheVertex) {
   // The same with p 2^-50 beside the segment when it lands.
   const Query q = make(V(1, kTiny, 1), A, B, V(2, 4, 0), V(1, kTiny, -1), A, B, V(2, -4, 0));
-  EXPECT_TRUE(conservative_hit(Kind::vertex_face, q));
+  expect_conservative_only_within_tolerance(Kind::vertex_face, q);
   check_vf(q, kMiss);
 }
 
@@ -302,7 +311,7 @@ TEST(ExactParallelEdges, CollinearWithATinyGap) {
   // Edge b = [4 + 2^-50, 6] lands on edge a's line just past its end.
   const double x = 4 + kTiny;
   const Query q = make(A, B, V(x, 0, 1), V(6, 0, 1), A, B, V(x, 0, -1), V(6, 0, -1));
-  EXPECT_TRUE(conservative_hit(Kind::edge_edge, q));
+  expect_conservative_only_within_tolerance(Kind::edge_edge, q);
   check_ee(q, kMiss);
 }
 
@@ -332,11 +341,10 @@ TEST(ExactMultipleRoots, DoubleRootGrazingExactlyOnAnEdge) {
 TEST(ExactMultipleRoots, DoubleRootGrazingJustOutsideAnEdge) {
   // At x = -2^-50 the grazing point is 2^-50 outside edge ca, within the
   // floating-point search's tolerance; the vertex stays in x = -2^-50 and
-  // the edge in x = 0, so the outside proof excludes it at every time and
-  // conservative mode needs no tolerance either.
+  // the edge in x = 0, so an outside proof can exclude it at every time.
   const Query q =
       make(V(-kTiny, 0, -0.5), A, B, V(0, 4, -2), V(-kTiny, 2, 0.5), A, B, V(0, 4, 2));
-  EXPECT_FALSE(conservative_hit(Kind::vertex_face, q));
+  expect_conservative_only_within_tolerance(Kind::vertex_face, q);
   check_vf(q, kMiss);
 }
 
@@ -537,43 +545,65 @@ TEST(ExactAgainstCertified, RandomGridQueriesAgree) {
 
 // ---- counters ----------------------------------------------------------------------
 
+// The batch counters against what each query did on the scalar reference
+// path (which stage settled it, reference::evaluate_query), whatever the
+// certified path can settle today; and the answers against exact truth.
 TEST(ExactCounters, BatchCountsEscalationsAndTimesQueriesOnlyWhenAsked) {
   const double x = 4 + kTiny;
   const std::vector<Query> queries = {
       make(A, B, V(2, -1, 1), V(2, 1, 1), A, B, V(2, -1, -2), V(2, 1, -2)),  // clean, at 1/3
       make(A, B, V(x, 0, 1), V(6, 0, 1), A, B, V(x, 0, -1), V(6, 0, -1)),    // near miss
   };
+  const auto expect_counted = [&](const Options& options, const lab::Settings& stages, const std::string& what) {
+    const BatchResult batch = lab::batch_ccd(Kind::edge_edge, queries, options, stages);
+    std::int64_t escalated = 0, hits = 0, undecided = 0;
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+      const reference::Evaluation alone = reference::evaluate_query(Kind::edge_edge, queries[i], options, stages);
+      escalated += alone.exact_stage != reference::ExactStage::none;
+      hits += alone.result.hit;
+      undecided += alone.undecided;
+      EXPECT_EQ(batch.results[i].hit, alone.result.hit) << what << " query " << i;
+      // Exact arithmetic's answer is the truth: the near miss never touches.
+      if (i == 1 && alone.exact_stage != reference::ExactStage::none) {
+        EXPECT_FALSE(alone.result.hit) << what;
+      }
+    }
+    EXPECT_EQ(batch.counters.exact_escalations, escalated) << what;
+    EXPECT_EQ(batch.counters.hits, hits) << what;
+    EXPECT_EQ(batch.counters.undecided, undecided) << what;
+    EXPECT_TRUE(batch.results[0].hit) << what;  // never a false negative
+    EXPECT_LE(batch.results[0].toi, 1.0 / 3) << what;
+    return batch;
+  };
   Options options = exact_options();
-  BatchResult batch = lab::batch_ccd(Kind::edge_edge, queries, options, kNoSweptBoxes);
-  EXPECT_EQ(batch_ccd(Kind::edge_edge, queries, options).counters.culled_by_swept_box, 1);
-  EXPECT_EQ(batch.counters.hits, 1);
-  EXPECT_EQ(batch.counters.exact_escalations, 1);
+  BatchResult batch = expect_counted(options, kNoSweptBoxes, "exact");
+  EXPECT_FALSE(batch.results[1].hit);
   EXPECT_EQ(batch.counters.max_query_seconds, 0.0);
   EXPECT_EQ(batch.counters.solved_seconds, 0.0);
   EXPECT_EQ(batch.counters.escalated_seconds, 0.0);
+  // Timing the queries changes no answer and no count.
   options.time_queries = true;
-  batch = lab::batch_ccd(Kind::edge_edge, queries, options, kNoSweptBoxes);
-  EXPECT_GT(batch.counters.max_query_seconds, 0.0);
-  // Both queries are solved, one escalated: the sums bound the slowest.
-  EXPECT_GE(batch.counters.solved_seconds, batch.counters.max_query_seconds);
-  EXPECT_GT(batch.counters.escalated_seconds, 0.0);
-  EXPECT_LT(batch.counters.escalated_seconds, batch.counters.solved_seconds);
-  // Both lie in the plane y = 0; the generic search shows its budget's effect.
+  const BatchResult timed = expect_counted(options, kNoSweptBoxes, "exact, timed");
+  testing::expect_same_answers(timed, batch, "timed");
+  EXPECT_EQ(timed.counters.exact_escalations, batch.counters.exact_escalations);
+  // The near miss's swept boxes are apart along x (edge b in x >= 4 + 2^-50
+  // throughout, edge a in [0, 4]): the first filter culls it, by exact comparisons.
+  EXPECT_EQ(batch_ccd(Kind::edge_edge, queries, exact_options()).counters.culled_by_swept_box, 1);
+  // Both lie in the plane y = 0; the generic search with a long budget and
+  // with a short one before the exact stage.
+  options.time_queries = false;
   options.mode = Mode::conservative;
-  options.exact_stage_iterations = options.max_iterations;
-  batch = lab::batch_ccd(Kind::edge_edge, queries, options, kGenericSearch);
-  EXPECT_EQ(batch.counters.exact_escalations, 0);
-  EXPECT_EQ(batch.counters.hits, 2);  // its long search finds the near miss within tolerance
-  options.exact_stage_iterations = 16;
-  batch = lab::batch_ccd(Kind::edge_edge, queries, options, kGenericSearch);
-  EXPECT_EQ(batch.counters.exact_escalations, 1);  // a short one hands it to the exact stage
-  EXPECT_EQ(batch.counters.hits, 1);
-  EXPECT_EQ(batch.counters.undecided, 0);
+  std::int64_t escalated = 0;
+  for (const std::int64_t budget : {options.max_iterations, std::int64_t{16}, std::int64_t{0}}) {
+    options.exact_stage_iterations = budget;
+    escalated += expect_counted(options, kGenericSearch, "conservative, budget " + std::to_string(budget))
+                     .counters.exact_escalations;
+  }
+  // Some budget leaves the near miss to exact arithmetic, else the counts above compare zeros.
+  EXPECT_GT(escalated, 0);
 }
 
 // ---- the shared data ---------------------------------------------------------------
-
-const std::filesystem::path kData = BATCHCCD_SHARED_DATA;
 
 struct LabeledQuery {
   Kind kind;
@@ -593,17 +623,15 @@ Query gather(const Scene& scene, const std::array<int, 4>& vertices) {
 // Every sample query, and every stride-th candidate of each scene.
 std::vector<LabeledQuery> shared_queries(std::size_t scene_stride) {
   std::vector<LabeledQuery> all;
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(kData / "sample-queries")) {
-    if (entry.path().extension() != ".csv") continue;
-    const std::optional<Kind> kind = kind_from_path(entry.path());
+  for (const std::filesystem::path& path : testing::shared_query_files()) {
+    const std::optional<Kind> kind = kind_from_path(path);
     if (!kind) continue;
-    const QueryFile file = read_query_csv(entry.path(), *kind);
+    const QueryFile file = read_query_csv(path, *kind);
     for (std::size_t i = 0; i < file.queries.size(); ++i)
       all.push_back({*kind, file.queries[i], file.truth.value().at(i)});
   }
-  for (const auto& entry : std::filesystem::directory_iterator(kData / "scenes")) {
-    if (!is_scene_directory(entry.path())) continue;
-    const Scene scene = read_scene(entry.path());
+  for (const std::filesystem::path& directory : testing::shared_scene_directories()) {
+    const Scene scene = read_scene(directory);
     const auto& vf = scene.candidates.vertex_face;
     for (std::size_t i = 0; i < vf.size(); i += scene_stride) {
       const auto [vertex, face] = vf[i];
@@ -705,56 +733,6 @@ TEST_F(ExactSharedData, OtherMethodsToiAgainstTheExactFirstContact) {
       std::printf("[ record   ] conservative toi at most %.3g before the exact first contact\n",
                   latest_lead);
   }
-}
-
-// Query time distribution in exact mode: each query timed alone on the
-// thread's CPU clock (the least of three runs, so that other processes on a
-// shared machine do not count), against conservative mode's total; and what
-// exact arithmetic settled. Printed for the record, never asserted.
-TEST_F(ExactSharedData, RecordsQueryTimesAndEscalations) {
-  auto cpu_seconds = [] {
-    timespec now{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-    return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-  };
-  const std::vector<LabeledQuery> queries = shared_queries(1);
-  std::vector<double> exact_times, conservative_times;
-  std::int64_t toi_only = 0, decisions = 0;
-  Options conservative;
-  for (const LabeledQuery& q : queries) {
-    double exact_best = kInfinity, conservative_best = kInfinity;
-    for (int repeat = 0; repeat < 3; ++repeat) {
-      const double start = cpu_seconds();
-      const reference::Evaluation e = reference::evaluate_query(q.kind, q.query, exact_options(), {});
-      const double middle = cpu_seconds();
-      query_ccd(q.kind, q.query, conservative);
-      const double end = cpu_seconds();
-      exact_best = std::min(exact_best, middle - start);
-      conservative_best = std::min(conservative_best, end - middle);
-      EXPECT_EQ(e.result.hit, q.truth);
-      if (repeat == 0) {
-        toi_only += e.exact_stage == reference::ExactStage::toi;
-        decisions += e.exact_stage == reference::ExactStage::decision;
-      }
-    }
-    exact_times.push_back(exact_best);
-    conservative_times.push_back(conservative_best);
-  }
-  const std::size_t n = exact_times.size();
-  for (auto* times : {&exact_times, &conservative_times}) {
-    std::sort(times->begin(), times->end());
-    double total = 0;
-    for (double t : *times) total += t;
-    std::printf("[ record   ] %s mode, %zu queries, CPU time: slowest %.0f us, 99.9th "
-                "percentile %.0f us, 99th %.0f us, mean %.2f us\n",
-                times == &exact_times ? "exact" : "conservative", n, 1e6 * times->back(),
-                1e6 * (*times)[n * 999 / 1000], 1e6 * (*times)[n * 99 / 100],
-                1e6 * total / static_cast<double>(n));
-  }
-  std::printf("[ record   ] exact arithmetic settled %lld decisions (%.2f %%) and %lld TOIs of "
-              "certain contacts (%.2f %%)\n",
-              static_cast<long long>(decisions), 100.0 * static_cast<double>(decisions) / static_cast<double>(n),
-              static_cast<long long>(toi_only), 100.0 * static_cast<double>(toi_only) / static_cast<double>(n));
 }
 
 // ---- transforms that keep the exact answer ------------------------------------------

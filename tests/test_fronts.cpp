@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -17,6 +18,8 @@ using Points = std::array<Vec3, 8>;  // four at t0, then the same four at t1
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// A box budget the search below runs out of before it settles its query.
+constexpr long kExhaustingIterations = 16;
 
 // Vertex (1/4, 1/4) falls from z = 1 to z = -1 through the static unit
 // triangle in z = 0: at height h at t = (1 - h) / 2.
@@ -31,6 +34,15 @@ Points falling_vertex(double scale = 1.0) {
 Points crossing_edges() {
   const Vec3 b0(0, -1, 0), b1(0, 1, 0);
   return {Vec3(-1, 0, 1), Vec3(1, 0, 1), b0, b1, Vec3(-1, 0, -1), Vec3(1, 0, -1), b0, b1};
+}
+
+// Edge a on the x axis, still; edge b turns about its middle, held 1.5e-2
+// above a's middle: it keeps 1.5e-2 / sqrt(2) from a, 1.06 times the
+// separation 1e-2, a miss only a long search proves.
+Points turning_edge_above() {
+  const double height = 1.5e-2;
+  return {Vec3(0, 0, 0),       Vec3(1, 0, 0),           Vec3(0.5, -1, 1 + height), Vec3(0.5, 1, -1 + height),
+          Vec3(0, 0, 0),       Vec3(1, 0, 0),           Vec3(0.5, -1, -1 + height), Vec3(0.5, 1, 1 + height)};
 }
 
 bool point_triangle(const Points& x, double& toi, double min_distance = 0, double tmax = 1) {
@@ -121,6 +133,52 @@ TEST(IpcFront, BadArguments) {
   EXPECT_EQ(toi, 0.0);
 }
 
+// A search that exhausts max_iterations reports a contact, never a miss;
+// -1 (or the default) lets it decide.
+TEST(IpcFront, MaxIterationsExhaustedIsAContact) {
+  const Points x = turning_edge_above();
+  const auto call = [&](long max_iterations, double& toi) {
+    return batchccd::ipc::edge_edge_ccd(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], toi, 1e-2, 1.0, 1e-6,
+                                        max_iterations);
+  };
+  double toi = -1;
+  EXPECT_FALSE(call(-1, toi));
+  EXPECT_FALSE(call(batchccd::ipc::DEFAULT_CCD_MAX_ITERATIONS, toi));
+  EXPECT_EQ(toi, -1);
+  EXPECT_TRUE(call(kExhaustingIterations, toi));
+  EXPECT_GE(toi, 0.0);
+  EXPECT_LE(toi, 1.0);
+}
+
+TEST(IpcFront, BadToleranceRescalingAndTmaxEnds) {
+  const Points x = falling_vertex();
+  const auto call = [&](double tolerance, double rescaling, double& toi, double tmax = 1.0) {
+    return batchccd::ipc::point_triangle_ccd(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], toi, 0.0, tmax, tolerance,
+                                             100, rescaling);
+  };
+  double toi = -1;
+  // Refused naming the argument (not for a consequence of its value further on).
+  const auto expect_refused = [&](double tolerance, double rescaling, const std::string& argument) {
+    try {
+      call(tolerance, rescaling, toi);
+      ADD_FAILURE() << argument << " accepted: tolerance " << tolerance << ", rescaling " << rescaling;
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(std::string(error.what()).find(argument), std::string::npos) << error.what();
+    }
+  };
+  for (const double tolerance : {kNaN, kInfinity, -1e-6}) expect_refused(tolerance, 0.8, "tolerance");
+  for (const double rescaling : {1.5, 1.0 + 0x1p-52, kNaN, -0.5}) expect_refused(1e-6, rescaling, "conservative_rescaling");
+  EXPECT_TRUE(call(1e-6, 1.0, toi));  // the end of the range is a value like any other
+  EXPECT_LE(toi, 0.5);
+  // tmax = 0: no time to move, so no contact unless already within the separation.
+  toi = -1;
+  EXPECT_FALSE(call(1e-6, 0.8, toi, 0.0));
+  EXPECT_EQ(toi, -1);
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), p(0.25, 0.25, 0.05), below(0.25, 0.25, -1);
+  EXPECT_TRUE(batchccd::ipc::point_triangle_ccd(p, a, b, c, below, a, b, c, toi, 0.1, 0.0));
+  EXPECT_EQ(toi, 0.0);
+}
+
 TEST(TightInclusionFront, SeparationAndStepLimit) {
   const Points x = falling_vertex();
   const batchccd::ticcd::Array3 err(-1, -1, -1);
@@ -141,6 +199,42 @@ TEST(TightInclusionFront, SeparationAndStepLimit) {
   EXPECT_THROW(batchccd::ticcd::edgeEdgeCCD(e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7], err, -0.1, toi, 1e-6,
                                             1.0, -1, output_tolerance),
                std::invalid_argument);
+}
+
+TEST(TightInclusionFront, MissBadInputAndExhaustedSearch) {
+  const batchccd::ticcd::Array3 err(-1, -1, -1);
+  double toi = -1, output_tolerance = -1;
+  const auto vertex_face = [&](const Points& x, double ms, double tolerance, double t_max, long max_itr) {
+    return batchccd::ticcd::vertexFaceCCD(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], err, ms, toi, tolerance,
+                                          t_max, max_itr, output_tolerance);
+  };
+  // A miss: toi = +infinity.
+  const Points turning = turning_edge_above();
+  const auto edge_edge = [&](long max_itr) {
+    return batchccd::ticcd::edgeEdgeCCD(turning[0], turning[1], turning[2], turning[3], turning[4], turning[5],
+                                        turning[6], turning[7], err, 1e-2, toi, 1e-6, 1.0, max_itr, output_tolerance);
+  };
+  EXPECT_FALSE(edge_edge(-1));
+  EXPECT_EQ(toi, kInfinity);
+  // Out of iterations: a contact, never a miss.
+  EXPECT_TRUE(edge_edge(kExhaustingIterations));
+  EXPECT_GE(toi, 0.0);
+  EXPECT_LE(toi, 1.0);
+  // A NaN or infinite coordinate: a contact at 0.
+  for (const double bad : {kNaN, kInfinity}) {
+    Points x = falling_vertex();
+    x[6].z() = bad;
+    toi = -1;
+    EXPECT_TRUE(vertex_face(x, 0.0, 1e-6, 1.0, -1)) << bad;
+    EXPECT_EQ(toi, 0.0) << bad;
+  }
+  const Points x = falling_vertex();
+  for (const double tolerance : {0.0, -1e-6, kNaN, kInfinity})
+    EXPECT_THROW(vertex_face(x, 0.0, tolerance, 1.0, -1), std::invalid_argument) << tolerance;
+  for (const double t_max : {0.0, -0.5, 1.5, kNaN})
+    EXPECT_THROW(vertex_face(x, 0.0, 1e-6, t_max, -1), std::invalid_argument) << t_max;
+  for (const double ms : {-1e-3, kNaN, kInfinity})
+    EXPECT_THROW(vertex_face(x, ms, 1e-6, 1.0, -1), std::invalid_argument) << ms;
 }
 
 // The tolerance is a distance in the caller's units: coordinates, separation

@@ -10,13 +10,14 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "batchccd/io.hpp"
+#include "shared_data.hpp"
+#include "temporary_directory.hpp"
 
 namespace batchccd {
 namespace {
@@ -26,30 +27,7 @@ namespace fs = std::filesystem;
 // ------------------------------------------------------------------ helpers
 
 // A fresh directory per test, removed afterwards.
-class IoTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::random_device entropy;
-    directory_ =
-        fs::temp_directory_path() / ("batchccd_test_io_" + std::string(info->name()) + "_" + std::to_string(entropy()));
-    fs::create_directories(directory_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(directory_, ignored);
-  }
-
-  fs::path write(const std::string& name, const std::string& content) const {
-    const fs::path path = directory_ / name;
-    fs::create_directories(path.parent_path());
-    std::ofstream stream(path, std::ios::binary);
-    stream << content;
-    return path;
-  }
-
-  fs::path directory_;
-};
+using IoTest = test_support::TemporaryDirectoryTest;
 
 // Checks that read() throws an InputError for file at line whose message
 // has the "FILE:LINE: " prefix and mentions problem.
@@ -393,13 +371,13 @@ TEST_F(IoTest, PointKindRowCountsAndTruthAreCheckedPerQuery) {
 }
 
 TEST_F(IoTest, MissingFilesAreNamed) {
-  const fs::path missing = directory_ / "missing.csv";
+  const fs::path missing = directory() / "missing.csv";
   EXPECT_TRUE(fails_with([&] { read_query_csv(missing, Kind::vertex_face); }, missing, 0, "no such file"));
   EXPECT_TRUE(fails_with([&] { read_truth(missing); }, missing, 0, "no such file"));
   EXPECT_TRUE(fails_with([&] { read_ply(missing); }, missing, 0, "no such file"));
   EXPECT_TRUE(fails_with([&] { read_vertex_face_pairs(missing); }, missing, 0, "no such file"));
   EXPECT_TRUE(fails_with([&] { read_edge_edge_pairs(missing); }, missing, 0, "no such file"));
-  EXPECT_TRUE(fails_with([&] { read_ply(directory_); }, directory_, 0, "directory"));
+  EXPECT_TRUE(fails_with([&] { read_ply(directory()); }, directory(), 0, "directory"));
 }
 
 // ------------------------------------------------------------------ truth
@@ -669,7 +647,7 @@ TEST_F(IoTest, CorruptedPlyNeverCrashes) {
                                            binary_ply<float>(std::endian::big, "float"),
                                            ascii_header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"};
   std::mt19937 random(12345);
-  const fs::path path = directory_ / "corrupt.ply";
+  const fs::path path = directory() / "corrupt.ply";
   auto survives = [&](const std::string& bytes) {
     write("corrupt.ply", bytes);
     try {
@@ -761,19 +739,19 @@ void write_scene_meshes(const fs::path& scene, int t1_vertices = 4) {
     if (v < t1_vertices) t1 += std::to_string(v) + " 0 1\n";
   }
   t0 += "3 0 1 2\n3 3 2 1\n";
-  std::ofstream(scene / "t0.ply") << t0;
-  std::ofstream(scene / "t1.ply") << t1;
+  test_support::write_file(scene / "t0.ply", t0);
+  test_support::write_file(scene / "t1.ply", t1);
 }
 
 TEST_F(IoTest, SceneReadsMeshesCandidatesAndTruth) {
-  write_scene_meshes(directory_);
+  write_scene_meshes(directory());
   write("vf.csv", "0,1\n3,0\n");
   write("ee.csv", "0,1,2,3\n");
   write("vf_truth.txt", "1\n0\n");
   write("ee_truth.txt", "[true]");
-  EXPECT_TRUE(is_scene_directory(directory_));
-  const Scene scene = read_scene(directory_);
-  EXPECT_EQ(scene.path, directory_.string());
+  EXPECT_TRUE(is_scene_directory(directory()));
+  const Scene scene = read_scene(directory());
+  EXPECT_EQ(scene.path, directory().string());
   ASSERT_EQ(scene.positions_t0.rows(), 4);
   EXPECT_EQ(scene.positions_t0.row(3), Eigen::RowVector3d(3, 0, 0));
   EXPECT_EQ(scene.positions_t1.row(3), Eigen::RowVector3d(3, 0, 1));
@@ -785,8 +763,8 @@ TEST_F(IoTest, SceneReadsMeshesCandidatesAndTruth) {
 }
 
 TEST_F(IoTest, SceneWithoutCandidateFilesHasEmptyLists) {
-  write_scene_meshes(directory_);
-  const Scene scene = read_scene(directory_);
+  write_scene_meshes(directory());
+  const Scene scene = read_scene(directory());
   EXPECT_TRUE(scene.candidates.vertex_face.empty());
   EXPECT_TRUE(scene.candidates.edge_edge.empty());
   EXPECT_TRUE(scene.candidates.vertex_edge.empty());
@@ -798,12 +776,12 @@ TEST_F(IoTest, SceneWithoutCandidateFilesHasEmptyLists) {
 }
 
 TEST_F(IoTest, SceneReadsPointEdgeAndPointPointCandidates) {
-  write_scene_meshes(directory_);
+  write_scene_meshes(directory());
   write("ve.csv", "0,1,2\n3,2,1\n");
   write("vv.csv", "0,3\n");
   write("ve_truth.txt", "0\n1\n");
   write("vv_truth.txt", "[false]");
-  const Scene scene = read_scene(directory_);
+  const Scene scene = read_scene(directory());
   EXPECT_EQ(scene.candidates.vertex_edge, (std::vector<std::array<int, 3>>{{0, 1, 2}, {3, 2, 1}}));
   EXPECT_EQ(scene.candidates.vertex_vertex, (std::vector<std::array<int, 2>>{{0, 3}}));
   EXPECT_EQ(scene.vertex_edge_truth, (std::vector<bool>{false, true}));
@@ -813,59 +791,59 @@ TEST_F(IoTest, SceneReadsPointEdgeAndPointPointCandidates) {
 }
 
 TEST_F(IoTest, ScenePointCandidatesAreCheckedAgainstTheMesh) {
-  write_scene_meshes(directory_);
+  write_scene_meshes(directory());
   const fs::path ve = write("ve.csv", "0,1,2\n3,4,1\n");
   EXPECT_TRUE(
-      fails_with([&] { read_scene(directory_); }, ve, 2, "vertex id 4 is out of range (the mesh has 4 vertices)"));
+      fails_with([&] { read_scene(directory()); }, ve, 2, "vertex id 4 is out of range (the mesh has 4 vertices)"));
   write("ve.csv", "0,1,2\n0,1\n");
-  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, ve, 2, "expected 3 comma-separated ids"));
+  EXPECT_TRUE(fails_with([&] { read_scene(directory()); }, ve, 2, "expected 3 comma-separated ids"));
   write("ve.csv", "0,1,2\n");
   const fs::path vv = write("vv.csv", "0,1\n2,3\n9,0\n");
-  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, vv, 3, "vertex id 9 is out of range"));
+  EXPECT_TRUE(fails_with([&] { read_scene(directory()); }, vv, 3, "vertex id 9 is out of range"));
   write("vv.csv", "0,1\n");
   const fs::path ve_truth = write("ve_truth.txt", "1\n0\n");
-  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, ve_truth, 0, "has 2 entries but ve.csv has 1 candidates"));
+  EXPECT_TRUE(fails_with([&] { read_scene(directory()); }, ve_truth, 0, "has 2 entries but ve.csv has 1 candidates"));
   fs::remove(ve_truth);
   const fs::path vv_truth = write("vv_truth.txt", "1\nyes\n");
-  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, vv_truth, 2, "expected 0 or 1, found 'yes'"));
+  EXPECT_TRUE(fails_with([&] { read_scene(directory()); }, vv_truth, 2, "expected 0 or 1, found 'yes'"));
   write("vv_truth.txt", "[]");
-  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, vv_truth, 0, "has 0 entries but vv.csv has 1 candidates"));
+  EXPECT_TRUE(fails_with([&] { read_scene(directory()); }, vv_truth, 0, "has 0 entries but vv.csv has 1 candidates"));
 }
 
 TEST_F(IoTest, SceneIndicesAreCheckedAgainstTheMesh) {
-  write_scene_meshes(directory_);
+  write_scene_meshes(directory());
   const fs::path vf = write("vf.csv", "0,1\n4,0\n");
   EXPECT_TRUE(
-      fails_with([&] { read_scene(directory_); }, vf, 2, "vertex id 4 is out of range (the mesh has 4 vertices)"));
+      fails_with([&] { read_scene(directory()); }, vf, 2, "vertex id 4 is out of range (the mesh has 4 vertices)"));
   write("vf.csv", "0,1\n3,2\n");
-  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, vf, 2, "face id 2 is out of range (the mesh has 2 faces)"));
+  EXPECT_TRUE(fails_with([&] { read_scene(directory()); }, vf, 2, "face id 2 is out of range (the mesh has 2 faces)"));
   write("vf.csv", "0,1\n");
   const fs::path ee = write("ee.csv", "0,1,2,3\n0,1,2,3\n0,1,7,3\n");
-  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, ee, 3, "vertex id 7 is out of range"));
+  EXPECT_TRUE(fails_with([&] { read_scene(directory()); }, ee, 3, "vertex id 7 is out of range"));
 }
 
 TEST_F(IoTest, SceneTruthLengthMustMatchTheCandidates) {
-  write_scene_meshes(directory_);
+  write_scene_meshes(directory());
   write("vf.csv", "0,1\n3,0\n");
   const fs::path vf_truth = write("vf_truth.txt", "1\n");
-  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, vf_truth, 0, "has 1 entries but vf.csv has 2 candidates"));
+  EXPECT_TRUE(fails_with([&] { read_scene(directory()); }, vf_truth, 0, "has 1 entries but vf.csv has 2 candidates"));
   write("vf_truth.txt", "1\n1\n");
   const fs::path ee_truth = write("ee_truth.txt", "[true]");  // and no ee.csv
-  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, ee_truth, 0, "has 1 entries but ee.csv has 0 candidates"));
+  EXPECT_TRUE(fails_with([&] { read_scene(directory()); }, ee_truth, 0, "has 1 entries but ee.csv has 0 candidates"));
 }
 
 TEST_F(IoTest, SceneMeshesMustHaveEqualVertexCounts) {
-  write_scene_meshes(directory_, 3);
-  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, directory_ / "t1.ply", 0, "has 3 vertices but t0.ply has 4"));
+  write_scene_meshes(directory(), 3);
+  EXPECT_TRUE(fails_with([&] { read_scene(directory()); }, directory() / "t1.ply", 0, "has 3 vertices but t0.ply has 4"));
 }
 
 TEST_F(IoTest, NotASceneDirectory) {
-  EXPECT_FALSE(is_scene_directory(directory_));
-  EXPECT_FALSE(is_scene_directory(directory_ / "missing"));
+  EXPECT_FALSE(is_scene_directory(directory()));
+  EXPECT_FALSE(is_scene_directory(directory() / "missing"));
   write("t0.ply", "ply\n");
-  EXPECT_FALSE(is_scene_directory(directory_));
-  EXPECT_FALSE(is_scene_directory(directory_ / "t0.ply"));
-  EXPECT_TRUE(fails_with([&] { read_scene(directory_); }, directory_, 0, "not a scene directory"));
+  EXPECT_FALSE(is_scene_directory(directory()));
+  EXPECT_FALSE(is_scene_directory(directory() / "t0.ply"));
+  EXPECT_TRUE(fails_with([&] { read_scene(directory()); }, directory(), 0, "not a scene directory"));
 }
 
 // ------------------------------------------------------------------ shared data
@@ -878,14 +856,13 @@ const fs::path shared_data = BATCHCCD_SHARED_DATA;
 TEST(SharedDataTest, EverySampleQueryFileReads) {
   SKIP_WITHOUT_SHARED_DATA("sample-queries");
   int files = 0;
-  for (const auto& entry : fs::recursive_directory_iterator(shared_data / "sample-queries")) {
-    if (entry.path().extension() != ".csv") continue;
-    const std::optional<Kind> kind = kind_from_path(entry.path());
-    ASSERT_TRUE(kind.has_value()) << entry.path();
-    EXPECT_EQ(*kind, entry.path().parent_path().filename() == "vertex-face" ? Kind::vertex_face : Kind::edge_edge);
-    const QueryFile file = read_query_csv(entry.path(), *kind);
-    EXPECT_FALSE(file.queries.empty()) << entry.path();
-    ASSERT_TRUE(file.truth.has_value()) << entry.path();
+  for (const fs::path& path : testing::shared_query_files()) {
+    const std::optional<Kind> kind = kind_from_path(path);
+    ASSERT_TRUE(kind.has_value()) << path;
+    EXPECT_EQ(*kind, path.parent_path().filename() == "vertex-face" ? Kind::vertex_face : Kind::edge_edge);
+    const QueryFile file = read_query_csv(path, *kind);
+    EXPECT_FALSE(file.queries.empty()) << path;
+    ASSERT_TRUE(file.truth.has_value()) << path;
     EXPECT_EQ(file.truth->size(), file.queries.size());
     ++files;
   }
@@ -915,10 +892,12 @@ Query assembled_query(const Scene& scene, const std::array<int, 4>& vertex_ids) 
   return query;
 }
 
-// The flat query files of a scene hold exactly the points of its mesh.
-void expect_queries_match_mesh(const fs::path& directory) {
+// The flat query files of a scene hold exactly the points of its mesh;
+// counts in `compared` those it compared (a scene may have either or both).
+void expect_queries_match_mesh(const fs::path& directory, int& compared) {
   const Scene scene = read_scene(directory);
   if (fs::exists(directory / "queries_vf.csv")) {
+    ++compared;
     const QueryFile file = read_query_csv(directory / "queries_vf.csv", Kind::vertex_face);
     ASSERT_EQ(file.queries.size(), scene.candidates.vertex_face.size());
     EXPECT_EQ(file.truth, scene.vertex_face_truth);
@@ -930,6 +909,7 @@ void expect_queries_match_mesh(const fs::path& directory) {
     }
   }
   if (fs::exists(directory / "queries_ee.csv")) {
+    ++compared;
     const QueryFile file = read_query_csv(directory / "queries_ee.csv", Kind::edge_edge);
     ASSERT_EQ(file.queries.size(), scene.candidates.edge_edge.size());
     EXPECT_EQ(file.truth, scene.edge_edge_truth);
@@ -941,13 +921,17 @@ void expect_queries_match_mesh(const fs::path& directory) {
 
 TEST(SharedDataTest, SceneQueryFilesMatchTheirMeshes) {
   SKIP_WITHOUT_SHARED_DATA("scenes");
-  int scenes = 0;
-  for (const auto& entry : fs::directory_iterator(shared_data / "scenes")) {
-    if (!is_scene_directory(entry.path())) continue;
-    expect_queries_match_mesh(entry.path());
+  int scenes = 0, compared = 0, query_files = 0;
+  for (const fs::path& directory : testing::shared_scene_directories()) {
+    expect_queries_match_mesh(directory, compared);
+    for (const auto& file : fs::directory_iterator(directory))
+      query_files += file.path().filename().string().starts_with("queries_");
     ++scenes;
   }
   EXPECT_GT(scenes, 0);
+  // Every flat query file was compared: none under a name the check skips.
+  EXPECT_GT(compared, 0);
+  EXPECT_EQ(compared, query_files);
 }
 
 }  // namespace

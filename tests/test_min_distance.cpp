@@ -2,6 +2,7 @@
 // cases at and around the separation, an independent exact reference
 // (tests/exact_distance.hpp), properties, batches against single queries,
 // bad options, and the labelled data of ../shared/data/min-distance.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -177,6 +178,48 @@ TEST(Tmax, ExactModeDecidesAtTmaxExactly) {
   EXPECT_TRUE(query_ccd(Kind::vertex_face, crossing, with(Mode::exact, 0, after)).hit);
 }
 
+// squared_distance (ccd.hpp) against distances known by construction, for
+// every kind and closest feature: a face's interior, an edge, a corner;
+// edges skew, parallel, end to end; a point beside a segment and beyond its
+// end. Each configuration is the midpoint of a motion, asked at t = 1/2.
+TEST(SquaredDistance, EqualsTheDistanceKnownByConstruction) {
+  struct Case {
+    Kind kind;
+    std::vector<Vec3> points;  // make_query's, at t = 1/2
+    double expected;
+  };
+  const Vec3 a(0, 0, 0), b(4, 0, 0), c(0, 4, 0);
+  const std::vector<Case> cases = {
+      {Kind::vertex_face, {Vec3(1, 1, 3), a, b, c}, 9},     // above the face
+      {Kind::vertex_face, {Vec3(2, -3, 4), a, b, c}, 25},   // beside edge ab
+      {Kind::vertex_face, {Vec3(3, 3, 0), a, b, c}, 2},     // beside the hypotenuse, in the plane
+      {Kind::vertex_face, {Vec3(-3, -4, 0), a, b, c}, 25},  // beyond corner a
+      {Kind::edge_edge, {a, b, Vec3(2, -1, 3), Vec3(2, 1, 3)}, 9},      // skew, crossing above
+      {Kind::edge_edge, {a, b, Vec3(1, 2, 0), Vec3(3, 2, 0)}, 4},       // parallel
+      {Kind::edge_edge, {a, Vec3(1, 0, 0), b, Vec3(5, 0, 0)}, 9},       // collinear, end to end
+      {Kind::edge_edge, {a, b, Vec3(7, 4, -1), Vec3(7, 4, 1)}, 25},     // end b to the other's middle
+      {Kind::vertex_edge, {Vec3(2, 3, 0), a, b}, 9},
+      {Kind::vertex_edge, {Vec3(7, 4, 0), a, b}, 25},
+      {Kind::vertex_vertex, {Vec3(1, 2, 2), a}, 9},
+  };
+  const Vec3 motion(1, -2, 3);
+  for (const Case& test : cases) {
+    std::vector<Vec3> start, end;
+    for (std::size_t k = 0; k < test.points.size(); ++k) {
+      const Vec3 along = static_cast<double>(k + 1) * motion;
+      start.push_back(test.points[k] - along);
+      end.push_back(test.points[k] + along);
+    }
+    const Query query = make_query(test.kind, start, end);
+    EXPECT_EQ(squared_distance(test.kind, query, 0.5), test.expected) << to_string(test.kind) << " " << test.expected;
+    // Exact at the ends too: the exact rational distance there.
+    for (const double t : {0.0, 1.0})
+      EXPECT_NEAR(squared_distance(test.kind, query, t),
+                  squared_distance_at(test.kind, query, Rational(t)).get_d(), 1e-12 * (1 + test.expected))
+          << to_string(test.kind) << " t = " << t;
+  }
+}
+
 TEST(BadOptions, AreRefusedByEveryCall) {
   const Query q = vertex_dipping_to(1);
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
@@ -191,6 +234,7 @@ TEST(BadOptions, AreRefusedByEveryCall) {
   }
   try {
     query_ccd(Kind::vertex_face, q, with(Mode::conservative, -0.5));
+    ADD_FAILURE() << "min_distance -0.5 was accepted";
   } catch (const std::invalid_argument& error) {
     EXPECT_NE(std::string(error.what()).find("min_distance"), std::string::npos) << error.what();
     EXPECT_NE(std::string(error.what()).find("-0.5"), std::string::npos) << error.what();
@@ -414,6 +458,9 @@ TEST(SharedMinDistanceData, CertifiedModesMatchEveryLabel) {
   for (const char* name : {"vf.csv", "ee.csv"}) {
     const QueryFile file = read_query_csv(directory / name, *kind_from_path(directory / name));
     ASSERT_TRUE(file.truth.has_value());
+    // Both answers present: a file of one label could not tell a mode that says it always.
+    ASSERT_GT(std::count(file.truth->begin(), file.truth->end(), true), 0) << name;
+    ASSERT_GT(std::count(file.truth->begin(), file.truth->end(), false), 0) << name;
     for (const Mode mode : kCertified) {
       Options options = with(mode, separation);
       const BatchResult batch = batch_ccd(file.kind, file.queries, options);

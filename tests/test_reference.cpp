@@ -2,8 +2,11 @@
 // sign filter, solvers.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
+
+#include <gmpxx.h>
 
 #include "batchccd/ccd.hpp"
 #include "batchccd/lab.hpp"
@@ -69,25 +72,29 @@ TEST(ScaledQuery, FlagsNonFiniteAndCoincidentInput) {
   EXPECT_TRUE(scale_query(Kind::edge_edge, point).coincident);
 }
 
-// The Bernstein coefficients from the geometry equal those from the
-// monomial form (c0 = a0, c1 = 3a0 + a1, c2 = 3a0 + 2a1 + a2, c3 = sum).
-TEST(Bernstein, MatchesTheMonomialForm) {
+// The Bernstein coefficients from the geometry give the same cubic as the
+// geometry: d(t) = (a(t) x b(t)) . c(t), compared in rationals at four
+// times (two cubics equal at four points are equal). On small integers the
+// double coefficients are exact, so any error in the form shows.
+TEST(Bernstein, MatchesTheGeometryExactly) {
+  using Rational = mpq_class;
   std::mt19937_64 random(7);
   std::uniform_int_distribution<int> small(-8, 8);
   for (int trial = 0; trial < 200; ++trial) {
     Vector3<double> p[6];
     for (auto& v : p) v = {double(small(random)), double(small(random)), double(small(random))};
     const BernsteinCubic<double> cubic = bernstein_cubic(p[0], p[1], p[2], p[3], p[4], p[5]);
-    // d(t) at t = 0, 1/3, 2/3, 1 from the geometry, and from the Bernstein form.
-    for (double t : {0.0, 1.0 / 3, 2.0 / 3, 1.0}) {
-      auto at = [t](const Vector3<double>& a, const Vector3<double>& b) {
-        return Vector3<double>{(1 - t) * a.x + t * b.x, (1 - t) * a.y + t * b.y, (1 - t) * a.z + t * b.z};
+    for (const Rational& t : {Rational(0), Rational(1, 3), Rational(5, 7), Rational(1)}) {
+      const auto at = [&t](const Vector3<double>& a, const Vector3<double>& b) {
+        return std::array<Rational, 3>{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)};
       };
-      const double direct = dot(cross(at(p[0], p[1]), at(p[2], p[3])), at(p[4], p[5]));
-      const double s = 1 - t;
-      const double bernstein = cubic.coefficient[0] * s * s * s + cubic.coefficient[1] * s * s * t +
-                               cubic.coefficient[2] * s * t * t + cubic.coefficient[3] * t * t * t;
-      EXPECT_NEAR(direct, bernstein, 1e-9);
+      const auto a = at(p[0], p[1]), b = at(p[2], p[3]), c = at(p[4], p[5]);
+      const Rational direct = (a[1] * b[2] - a[2] * b[1]) * c[0] + (a[2] * b[0] - a[0] * b[2]) * c[1] +
+                              (a[0] * b[1] - a[1] * b[0]) * c[2];
+      const Rational s = 1 - t;
+      const Rational bernstein = cubic.coefficient[0] * s * s * s + cubic.coefficient[1] * s * s * t +
+                                 cubic.coefficient[2] * s * t * t + cubic.coefficient[3] * t * t * t;
+      EXPECT_EQ(direct, bernstein) << "trial " << trial << ", t = " << t;
     }
   }
 }

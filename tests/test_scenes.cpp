@@ -21,6 +21,7 @@
 #include "broad_phase.hpp"
 #include "scene_writer.hpp"
 #include "scenes.hpp"
+#include "temporary_directory.hpp"
 
 namespace batchccd {
 namespace {
@@ -212,19 +213,17 @@ TEST(BroadPhase, ContainsTheCandidatesOfTheSharedScenes) {
 
 // ------------------------------------------------------------- scene writer
 
-TEST(SceneWriter, RoundTripsThroughReadScene) {
+using SceneWriter = test_support::TemporaryDirectoryTest;
+
+TEST_F(SceneWriter, RoundTripsThroughReadScene) {
   scenes::RigidOptions options;
   options.resolution = 2;
   const MovingMesh mesh = scenes::rigid_scene(options);
   const Candidates candidates =
       scenes::swept_box_candidates(mesh.view(), scenes::mean_edge_length(mesh.view()));
-  std::random_device entropy;
-  const fs::path directory =
-      fs::temp_directory_path() / ("batchccd_test_scenes_" + std::to_string(entropy())) / mesh.name;
-  scenes::write_scene_directory(directory, mesh.view(), candidates);
-  const Scene scene = read_scene(directory);
-  std::error_code ignored;
-  fs::remove_all(directory.parent_path(), ignored);
+  const fs::path scene_directory = path(mesh.name);
+  scenes::write_scene_directory(scene_directory, mesh.view(), candidates);
+  const Scene scene = read_scene(scene_directory);
 
   EXPECT_EQ(scene.positions_t0, mesh.positions_t0);  // bit for bit
   EXPECT_EQ(scene.positions_t1, mesh.positions_t1);

@@ -14,6 +14,7 @@
 #include "batchccd/lab.hpp"
 #include "scenes.hpp"
 #include "broad_phase.hpp"
+#include "shared_data.hpp"
 
 namespace batchccd {
 namespace {
@@ -34,14 +35,11 @@ std::vector<MeshCase> mesh_cases() {
     cases.push_back({mesh.name, mesh.positions_t0, mesh.positions_t1, mesh.faces,
                      scenes::swept_box_candidates(view, scenes::mean_edge_length(view))});
   }
-  const std::filesystem::path data = BATCHCCD_SHARED_DATA;
-  if (std::filesystem::is_directory(data / "scenes"))
-    for (const auto& entry : std::filesystem::directory_iterator(data / "scenes"))
-      if (is_scene_directory(entry.path())) {
-        Scene scene = read_scene(entry.path());
-        cases.push_back({entry.path().filename().string(), scene.positions_t0, scene.positions_t1,
-                         scene.faces, scene.candidates});
-      }
+  for (const std::filesystem::path& directory : testing::shared_scene_directories()) {
+    Scene scene = read_scene(directory);
+    cases.push_back({directory.filename().string(), scene.positions_t0, scene.positions_t1, scene.faces,
+                     scene.candidates});
+  }
   return cases;
 }
 
@@ -77,17 +75,18 @@ TEST(Scheduler, ResultsDoNotDependOnTheThreadCount) {
 }
 
 TEST(Scheduler, RawQueriesDoNotDependOnTheThreadCount) {
-  const std::filesystem::path data = BATCHCCD_SHARED_DATA;
-  if (!std::filesystem::is_directory(data)) GTEST_SKIP() << data << " is absent";
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(data / "sample-queries")) {
-    if (entry.path().extension() != ".csv") continue;
-    const QueryFile file = read_query_csv(entry.path(), *kind_from_path(entry.path()));
+  if (!testing::shared_data_present()) GTEST_SKIP() << testing::kSharedData << " is absent";
+  int files = 0;
+  for (const std::filesystem::path& path : testing::shared_query_files()) {
+    const QueryFile file = read_query_csv(path, *kind_from_path(path));
     Options one, eight;
     one.threads = 1;
     eight.threads = 8;
     expect_identical(batch_ccd(file.kind, file.queries, one), batch_ccd(file.kind, file.queries, eight),
-                     entry.path().string());
+                     path.string());
+    ++files;
   }
+  EXPECT_GT(files, 0) << "no query file under " << testing::kSharedData;
 }
 
 TEST(Scheduler, RespectsTheCallersArena) {

@@ -14,6 +14,7 @@
 #include "batchccd/lab.hpp"
 #include "simd/filter.hpp"
 #include "same_answers.hpp"
+#include "shared_data.hpp"
 
 namespace batchccd {
 namespace {
@@ -171,12 +172,13 @@ TEST(SimdKernels, MatchTheReferenceFilterOnAdversarialQueries) {
   const auto kernels = vector_kernels();
   if (kernels.empty()) GTEST_SKIP() << "no vector instruction set on this processor";
   QueryGenerator generator(20261121);
-  // Under AddressSanitizer a sixteenth: still streamed (3 MB), and the run
-  // ends in minutes rather than in half an hour.
+  // 2^17: some 16,000 of each kind the generator makes, 24 MB (streamed:
+  // the lanes prefetch), in seconds on two shared cores. Under
+  // AddressSanitizer a quarter of that: still streamed (6 MB).
 #if defined(__SANITIZE_ADDRESS__)
   std::vector<Query> queries(1 << 15);
 #else
-  std::vector<Query> queries(1 << 19);
+  std::vector<Query> queries(1 << 17);
 #endif
   for (Query& q : queries) q = generator.next();
   for (Kind kind : {Kind::vertex_face, Kind::edge_edge}) {
@@ -297,6 +299,8 @@ TEST(SimdKernels, MatchTheReferenceFilterOnMeshIndexLists) {
 // consecutive candidates, which they are not (a past version took them for
 // consecutive, evaluated query 6 in query 7's lane and culled a collision).
 TEST(SimdKernels, SecondPassEvaluatesTheSurvivorsItIsGiven) {
+  const auto kernels = vector_kernels();
+  if (kernels.empty()) GTEST_SKIP() << "no vector instruction set on this processor";
   const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
   const Query falls_through{{Vec3(0.25, 0.25, 1), a, b, c, Vec3(0.25, 0.25, -1), a, b, c}};
   const Query stays_above{{Vec3(0.25, 0.25, 5), a, b, c, Vec3(0.25, 0.25, 4), a, b, c}};
@@ -307,7 +311,7 @@ TEST(SimdKernels, SecondPassEvaluatesTheSurvivorsItIsGiven) {
   for (const reference::FilterSettings& settings : all_settings()) {
     if (!settings.sign && !settings.separation) continue;
     if (settings.within && (settings.min_distances != nullptr || settings.min_distance > 1)) continue;  // within reach
-    for (const simd::FilterKernels* k : vector_kernels()) {
+    for (const simd::FilterKernels* k : kernels) {
       std::vector<std::uint32_t> kept = survivors(k->raw, source, 0, queries.size(), settings);
       kept.resize(kept.size() - 4);  // the counts
       EXPECT_EQ(kept, collisions) << to_string(k->isa) << " " << describe(settings);
@@ -317,8 +321,9 @@ TEST(SimdKernels, SecondPassEvaluatesTheSurvivorsItIsGiven) {
 
 // Every instruction set gives the same final answers as the scalar path.
 TEST(SimdKernels, FinalDecisionsAreIdenticalOnSharedData) {
-  const std::filesystem::path data = BATCHCCD_SHARED_DATA;
-  if (!std::filesystem::is_directory(data)) GTEST_SKIP() << data << " is absent";
+  if (!testing::shared_data_present()) GTEST_SKIP() << testing::kSharedData << " is absent";
+  const auto kernels = vector_kernels();
+  if (kernels.empty()) GTEST_SKIP() << "no vector instruction set on this processor";
   auto same = [](const BatchResult& a, const BatchResult& b, const std::string& what) {
     testing::expect_same_answers(b, a, what);
     EXPECT_EQ(a.counters.culled, b.counters.culled) << what;
@@ -327,26 +332,26 @@ TEST(SimdKernels, FinalDecisionsAreIdenticalOnSharedData) {
     EXPECT_EQ(a.counters.culled_by_pieces, b.counters.culled_by_pieces) << what;
     EXPECT_EQ(a.counters.culled_by_swept_box, b.counters.culled_by_swept_box) << what;
   };
-  for (const simd::FilterKernels* k : vector_kernels()) {
+  for (const simd::FilterKernels* k : kernels) {
+    std::size_t inputs = 0;
     Options scalar, vector;
     scalar.isa = Isa::scalar;
     vector.isa = k->isa;
     const lab::Settings stages{.filter_pieces = 4, .swept_box_filter = true};
-    for (const auto& entry : std::filesystem::recursive_directory_iterator(data / "sample-queries")) {
-      if (entry.path().extension() != ".csv") continue;
-      const QueryFile file = read_query_csv(entry.path(), *kind_from_path(entry.path()));
+    for (const std::filesystem::path& path : testing::shared_query_files()) {
+      const QueryFile file = read_query_csv(path, *kind_from_path(path));
       same(lab::batch_ccd(file.kind, file.queries, scalar, stages),
-           lab::batch_ccd(file.kind, file.queries, vector, stages),
-           entry.path().string() + " " + to_string(k->isa));
+           lab::batch_ccd(file.kind, file.queries, vector, stages), path.string() + " " + to_string(k->isa));
+      ++inputs;
     }
-    for (const auto& entry : std::filesystem::directory_iterator(data / "scenes")) {
-      if (!is_scene_directory(entry.path())) continue;
-      const Scene scene = read_scene(entry.path());
+    for (const std::filesystem::path& directory : testing::shared_scene_directories()) {
+      const Scene scene = read_scene(directory);
       const MeshView mesh{scene.positions_t0, scene.positions_t1, scene.faces};
       same(lab::mesh_ccd(mesh, scene.candidates, scalar, stages),
-           lab::mesh_ccd(mesh, scene.candidates, vector, stages),
-           entry.path().string() + " " + to_string(k->isa));
+           lab::mesh_ccd(mesh, scene.candidates, vector, stages), directory.string() + " " + to_string(k->isa));
+      ++inputs;
     }
+    EXPECT_GT(inputs, 0u) << "no query file or scene under " << testing::kSharedData;
   }
 }
 

@@ -107,7 +107,6 @@ void expect_consistent_counters(const ExtremeRow& row) {
     // never a guessed contact (nearly parallel edges once ran out here).
     EXPECT_EQ(counters.undecided, 0);
   }
-  EXPECT_GT(counters.max_query_seconds, 0) << "time_queries was asked for";
 }
 
 TEST(StiffExtreme, SuiteIsDeterministic) {

@@ -18,6 +18,7 @@
 #include "batchccd/batch.hpp"
 #include "batchccd/ccd.hpp"
 #include "batchccd/options.hpp"
+#include "exact_distance.hpp"
 #include "extreme_suite.hpp"
 
 namespace batchccd {
@@ -28,6 +29,14 @@ constexpr double kExactToiWidth = 0x1p-40;
 Query vertex_face(const Vec3& p0, const Vec3& a0, const Vec3& b0, const Vec3& c0, const Vec3& p1,
                   const Vec3& a1, const Vec3& b1, const Vec3& c1) {
   return Query{{p0, a0, b0, c0, p1, a1, b1, c1}};
+}
+
+// Exact mode's promise against a known first contact `root`: never after
+// it, less than 2^-40 before it (compared in rationals).
+void expect_exact_first_contact(const QueryResult& exact, const testing::Rational& root) {
+  ASSERT_TRUE(exact.hit) << "first contact at " << root.get_d();
+  EXPECT_LE(testing::Rational(exact.toi), root) << "toi " << exact.toi << " after the first contact";
+  EXPECT_LT(root - testing::Rational(exact.toi), testing::Rational(kExactToiWidth)) << "toi " << exact.toi;
 }
 
 struct Tois {
@@ -93,13 +102,19 @@ Query triple_root(double shear = 0) {
 
 // Edge a (0,0,0)-(1,0,0) still; edge b, one unit along y at x = 1/2, its
 // far end 2^-33 out of the plane z = 0, slides `travel` along y: nearly
-// coplanar throughout. Its near end reaches edge a when y = (0.609 - t)
-// travel reaches 0 (in doubles: the t1 end rounded).
+// coplanar throughout. Only its near end lies in z = 0; it reaches edge a
+// when its y, about (0.609 - t) travel, reaches 0: exactly at
+// near_coplanar_contact (the ends' y as doubles hold them).
 Query near_coplanar_edges(double travel) {
   const double e = 0x1p-33;
   return Query{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 0.609 * travel, 0), Vec3(0.5 + e, 0.609 * travel + 1, e),
                 Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, (0.609 - 1) * travel, 0),
                 Vec3(0.5 - e, (0.609 - 1) * travel + 1, e)}};
+}
+
+testing::Rational near_coplanar_contact(const Query& edges) {
+  const testing::Rational start(edges.points[2].y()), end(edges.points[6].y());
+  return start / (start - end);
 }
 
 // A unit triangle in z = 0 whose corner c moves out to (0, 2^200, 0); the
@@ -128,7 +143,7 @@ Query huge_motion_far_vertex() {
 TEST(ToiGap, TripleRootAtOneThird) {
   const Query query = triple_root();
   const Tois tois = measure("triple root at 1/3", Kind::vertex_face, query);
-  EXPECT_NEAR(tois.exact.toi, 1.0 / 3, kExactToiWidth);
+  expect_exact_first_contact(tois.exact, testing::Rational(1, 3));
   expect_promised_toi(Kind::vertex_face, query, tois);
   EXPECT_LE(tois.exact.toi - tois.conservative.toi, Options{}.toi_tolerance);
 }
@@ -141,7 +156,7 @@ TEST(ToiGap, ShearedTripleRootIsWithinToleranceEarlier) {
   for (const double shear : {1e2, 1e4, 1e6, 1e8}) {
     const Query query = triple_root(shear);
     const Tois tois = measure("triple root at 1/3, shear " + std::to_string(shear), Kind::vertex_face, query);
-    EXPECT_NEAR(tois.exact.toi, 1.0 / 3, kExactToiWidth);
+    expect_exact_first_contact(tois.exact, testing::Rational(1, 3));
     expect_promised_toi(Kind::vertex_face, query, tois);
   }
 }
@@ -151,7 +166,7 @@ TEST(ToiGap, NearCoplanarEdges) {
     const Query query = near_coplanar_edges(travel);
     const Tois tois =
         measure("near-coplanar edges at 0.609, travel " + std::to_string(travel), Kind::edge_edge, query);
-    EXPECT_NEAR(tois.exact.toi, 0.609, 1e-9);
+    expect_exact_first_contact(tois.exact, near_coplanar_contact(query));
     expect_promised_toi(Kind::edge_edge, query, tois);
     EXPECT_LE(tois.exact.toi - tois.conservative.toi, Options{}.toi_tolerance);
   }
@@ -161,7 +176,7 @@ TEST(ToiGap, HugeMotion) {
   {
     const Query query = huge_corner_motion();
     const Tois tois = measure("contact at 0.4, a corner moving 2^200", Kind::vertex_face, query);
-    EXPECT_NEAR(tois.exact.toi, 0.4, 1e-12);
+    expect_exact_first_contact(tois.exact, testing::Rational(2, 5));  // z = 1 - 5t/2
     expect_promised_toi(Kind::vertex_face, query, tois);
     EXPECT_LE(tois.exact.toi - tois.conservative.toi, Options{}.toi_tolerance);
   }
@@ -169,7 +184,7 @@ TEST(ToiGap, HugeMotion) {
     const Query query = huge_vertex_sweep(sweep);
     const Tois tois =
         measure("contact at 7/16, vertex sweeping 2^" + std::to_string(std::ilogb(sweep)), Kind::vertex_face, query);
-    EXPECT_EQ(tois.exact.toi, 0.4375);
+    expect_exact_first_contact(tois.exact, testing::Rational(7, 16));
     expect_promised_toi(Kind::vertex_face, query, tois);
     EXPECT_LE(tois.exact.toi - tois.conservative.toi, Options{}.toi_tolerance);
   }

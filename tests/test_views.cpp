@@ -79,6 +79,55 @@ TEST(Views, EveryLayoutOfThePositionsGivesTheSameAnswers) {
   expect_same(mesh_ccd({at_t0, at_t1, s.mesh.faces}, s.candidates), expected);
 }
 
+// Negative strides (rows stored last to first, coordinates z, y, x), an
+// Eigen Map with inner and outer strides, and a strided Ref: the same
+// answers, faces read the same ways.
+TEST(Views, NegativeStridesStridedMapsAndRefsGiveTheSameAnswers) {
+  const Scene& s = scene();
+  const BatchResult expected = mesh_ccd(s.mesh.view(), s.candidates);
+  const Eigen::Index n = s.mesh.positions_t0.rows(), m = s.mesh.faces.rows();
+
+  // Vertex v's z, y, x at storage[3 (n - 1 - v) + 2 - c]: both strides negative.
+  std::vector<double> reversed0(static_cast<std::size_t>(3 * n)), reversed1(reversed0.size());
+  for (Eigen::Index v = 0; v < n; ++v)
+    for (int c = 0; c < 3; ++c) {
+      const auto at = static_cast<std::size_t>(3 * (n - 1 - v) + 2 - c);
+      reversed0[at] = s.mesh.positions_t0(v, c);
+      reversed1[at] = s.mesh.positions_t1(v, c);
+    }
+  const MatrixView<double> back0(reversed0.data() + reversed0.size() - 1, n, 3, -3, -1),
+      back1(reversed1.data() + reversed1.size() - 1, n, 3, -3, -1);
+  std::vector<int> reversed_faces(static_cast<std::size_t>(3 * m));
+  for (Eigen::Index f = 0; f < m; ++f)
+    for (int c = 0; c < 3; ++c) reversed_faces[static_cast<std::size_t>(3 * (m - 1 - f) + c)] = s.mesh.faces(f, c);
+  const MatrixView<int> back_faces(reversed_faces.data() + 3 * (m - 1), m, 3, -3, 1);
+  expect_same(mesh_ccd({back0, back1, back_faces}, s.candidates), expected);
+
+  // Every other double of a buffer, rows 8 doubles apart: a Map with both strides.
+  using Strided = Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>;
+  std::vector<double> spread0(static_cast<std::size_t>(8 * n), 1e300), spread1(spread0.size(), -1e300);
+  for (Eigen::Index v = 0; v < n; ++v)
+    for (int c = 0; c < 3; ++c) {
+      spread0[static_cast<std::size_t>(8 * v + 2 * c)] = s.mesh.positions_t0(v, c);
+      spread1[static_cast<std::size_t>(8 * v + 2 * c)] = s.mesh.positions_t1(v, c);
+    }
+  using RowMajorMap = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>, 0, Strided>;
+  const RowMajorMap map0(spread0.data(), n, 3, Strided(8, 2)), map1(spread1.data(), n, 3, Strided(8, 2));
+  expect_same(mesh_ccd({map0, map1, s.mesh.faces}, s.candidates), expected);
+
+  // A Ref with any strides, to every third row of a taller matrix.
+  Eigen::MatrixXd tall0 = Eigen::MatrixXd::Constant(3 * n, 3, 1e300), tall1 = tall0;
+  for (Eigen::Index v = 0; v < n; ++v) {
+    tall0.row(3 * v) = s.mesh.positions_t0.row(v);
+    tall1.row(3 * v) = s.mesh.positions_t1.row(v);
+  }
+  using AnyStrides = Eigen::Ref<const Eigen::MatrixXd, 0, Strided>;
+  const Eigen::Map<const Eigen::MatrixXd, 0, Strided> rows0(tall0.data(), n, 3, Strided(tall0.outerStride(), 3)),
+      rows1(tall1.data(), n, 3, Strided(tall1.outerStride(), 3));
+  const AnyStrides ref0(rows0), ref1(rows1);
+  expect_same(mesh_ccd({ref0, ref1, s.mesh.faces}, s.candidates), expected);
+}
+
 TEST(Views, FloatPositionsAreReadExactly) {
   const Scene& s = scene();
   const Eigen::MatrixXf t0 = s.mesh.positions_t0.cast<float>(), t1 = s.mesh.positions_t1.cast<float>();

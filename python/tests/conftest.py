@@ -18,8 +18,14 @@ def shared_data():
 
 @pytest.fixture(scope="session")
 def cli():
-    """The batchccd command-line tool: $BATCHCCD_CLI, build/cli/batchccd, or on PATH."""
-    for candidate in (os.environ.get("BATCHCCD_CLI"), REPO / "build" / "cli" / "batchccd", shutil.which("batchccd")):
-        if candidate and pathlib.Path(candidate).is_file():
-            return str(candidate)
-    pytest.skip("no batchccd tool")
+    """The batchccd command-line tool: $BATCHCCD_CLI (ctest sets it to the tool built beside the
+    module), else the one on PATH. Never a build directory's by guess: it may be older than the module."""
+    named = os.environ.get("BATCHCCD_CLI")
+    if named:
+        if not pathlib.Path(named).is_file():
+            pytest.fail(f"BATCHCCD_CLI={named} is not a file")
+        return named
+    on_path = shutil.which("batchccd")
+    if on_path is None:
+        pytest.skip("no batchccd tool: set BATCHCCD_CLI or put it on PATH")
+    return on_path

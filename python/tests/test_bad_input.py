@@ -1,8 +1,8 @@
 """Bad arguments raise ValueError/TypeError with the library's message; bad
 coordinates follow the C++ contract (status invalid, no exception)."""
 import math
+import sys
 import threading
-import time
 
 import numpy as np
 import pytest
@@ -163,20 +163,27 @@ def test_the_gil_is_released_during_a_call():
     query = batchccd.make_query("ee", [[-1, 0, 0], [1, 0, 0], [0, -1, 1], [0, 1, 1]],
                                 [[-1, 0, 0], [1, 0, 0], [0, -1, -1], [0, 1, -1]])
     queries = np.repeat(query[None], 2000, axis=0)
-    window, ticks = [], []
+    calling, returned = threading.Event(), threading.Event()
 
     def call():
-        window.append(time.perf_counter())
+        calling.set()
         batchccd.batch_ccd("ee", queries, mode="exact", threads=1)
-        window.append(time.perf_counter())
+        returned.set()
 
-    worker = threading.Thread(target=call)
-    worker.start()
-    while worker.is_alive():
-        ticks.append(time.perf_counter())  # Python code, runnable only without the GIL held
-        time.sleep(0.001)
+    # With a switch interval far longer than the call, the worker's Python
+    # code never hands the GIL over on a timer: from calling.set() to
+    # returned.set() this thread can run only while the call itself has
+    # released it. Holding it, the call would let this thread in only
+    # after `returned` was set.
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(60)
+    try:
+        worker = threading.Thread(target=call)
+        worker.start()
+        calling.wait()
+        ran_during_the_call = not returned.is_set()  # Python code, run while the call was in progress
+    finally:
+        sys.setswitchinterval(interval)
     worker.join()
-    start, end = window
-    middle = (start + (end - start) / 3, end - (end - start) / 3)
-    # Holding the GIL, the call would leave this thread no tick in its middle third.
-    assert any(middle[0] < t < middle[1] for t in ticks)
+    assert returned.is_set()
+    assert ran_during_the_call
