@@ -135,14 +135,15 @@ struct Separations {
   double at(std::size_t i) const { return each ? each[i] : all; }
 };
 
-// The lane filters over candidates [0, count) of a source, in batches of
+// The lane filters over candidates [0, count) of a source of `kind`'s
+// candidates (a point kind's as edge-edge queries), in batches of
 // kFilterBatch: the survivors' indices, in increasing order, into
 // `survivors`.
 template <class Source>
-void filter_source(const Source& source, std::size_t count, simd::FilterFunction<Source> lanes,
+void filter_source(Kind kind, const Source& source, std::size_t count, simd::FilterFunction<Source> lanes,
                    const Options& options, const lab::Settings& lab, const Separations& separations,
                    CallStorage& storage, Partials& partials, std::vector<std::size_t>& survivors) {
-  reference::FilterSettings settings = reference::filter_settings(options, lab);
+  reference::FilterSettings settings = reference::settings_for(kind, reference::filter_settings(options, lab));
   settings.within = separations.any();
   settings.min_distance = separations.all;
   settings.min_distances = separations.each;
@@ -311,7 +312,7 @@ void lab::batch_ccd(Kind kind, std::span<const Query> queries, std::span<const d
       Partials partials(storage.partials);
       std::vector<std::size_t>& survivors = storage.survivors[0];
       if (filtered)
-        filter_source(source, queries.size(), kernels.raw, options, lab, separations, storage, partials,
+        filter_source(kind, source, queries.size(), kernels.raw, options, lab, separations, storage, partials,
                       survivors);
       reset(out, queries.size(), options);
       solve_source(source, queries.size(), filtered ? &survivors : nullptr, options, lab, separations, 0, out,
@@ -416,13 +417,13 @@ void filter_mesh(const MeshView& mesh, const CandidateLists& candidates, const M
       std::array<std::vector<std::size_t>, 4>& survivors = storage.survivors;
       if (filtered) {
         try {
-          filter_source(vertex_face_source, counts[0], kernels.vertex_face, options, lab,
+          filter_source(Kind::vertex_face, vertex_face_source, counts[0], kernels.vertex_face, options, lab,
                         separations[0], storage, partials, survivors[0]);
-          filter_source(edge_edge_source, counts[1], kernels.edge_edge, options, lab,
+          filter_source(Kind::edge_edge, edge_edge_source, counts[1], kernels.edge_edge, options, lab,
                         separations[1], storage, partials, survivors[1]);
-          filter_source(vertex_edge_source, counts[2], kernels.edge_edge, options, lab,
+          filter_source(Kind::vertex_edge, vertex_edge_source, counts[2], kernels.edge_edge, options, lab,
                         separations[2], storage, partials, survivors[2]);
-          filter_source(vertex_vertex_source, counts[3], kernels.edge_edge, options, lab,
+          filter_source(Kind::vertex_vertex, vertex_vertex_source, counts[3], kernels.edge_edge, options, lab,
                         separations[3], storage, partials, survivors[3]);
         } catch (const simd::IndexOutOfRange&) {
           check_mesh(mesh, candidates);  // names the first bad id
