@@ -10,7 +10,10 @@
 // Each list with the default filter stages (swept boxes first, 4 pieces
 // last), then without the swept boxes (no_swept_box, the stages of 0.4.0),
 // without them and the pieces (no_swept_box/pieces_1, those of 0.3.0), and
-// with 2 and 8 pieces. Counters per call: candidates/s (items_per_second),
+// with 2 and 8 pieces; and the point kinds' lists (vertex_edge,
+// vertex_vertex: point_candidates) with the default stages, also as
+// edge-edge candidates of a zero-length edge (as_edge_edge: how they were
+// filtered before their own distances). Counters per call: candidates/s (items_per_second),
 // the share culled by each lane filter stage, the survivors' share and the
 // hits. Ratios between separations are only meaningful within one run.
 // MethodOnDenseList: the modes and the cubic baseline at no separation,
@@ -20,6 +23,7 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
@@ -41,8 +45,53 @@ constexpr double kSeparations[] = {0, 1e-3, 1e-2};  // in mean edge lengths
 struct DenseList {
   Scene scene;
   Candidates candidates;
+  // Point-kind lists (vertex_edge and vertex_vertex only) of the same
+  // broad phase (point_candidates), and the same as edge-edge candidates
+  // with a zero-length edge (v, v, a, b) and (p, p, q, q): what the filters
+  // made of them before they had their own distances.
+  Candidates points;
+  std::vector<std::array<int, 4>> vertex_edge_as_edge_edge, vertex_vertex_as_edge_edge;
   double mean_edge_length = 0;
 };
+
+// The vertex-edge and vertex-vertex candidates of the same broad phase: a
+// vertex against an edge or vertex whose boxes (t0 and t1, grown by
+// `margin`) overlap its own. An edge's box lies in each of its faces', so
+// each such pair comes from a vertex-face candidate (the vertex against the
+// face's edges and corners); vertices joined by an edge are left out, as
+// edges sharing a vertex are.
+Candidates point_candidates(const Scene& scene, const Candidates& candidates, double margin) {
+  const Eigen::MatrixXd low = scene.positions_t0.cwiseMin(scene.positions_t1).array() - margin;
+  const Eigen::MatrixXd high = scene.positions_t0.cwiseMax(scene.positions_t1).array() + margin;
+  const auto overlap = [&](int v, int a, int b) {  // v's box against the box of a and b
+    for (int c = 0; c < 3; ++c)
+      if (low(v, c) > std::max(high(a, c), high(b, c)) || std::min(low(a, c), low(b, c)) > high(v, c)) return false;
+    return true;
+  };
+  std::vector<std::pair<int, int>> edges;
+  for (Eigen::Index f = 0; f < scene.faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = scene.faces(f, k), b = scene.faces(f, (k + 1) % 3);
+      edges.push_back({std::min(a, b), std::max(a, b)});
+    }
+  std::sort(edges.begin(), edges.end());
+  Candidates points;
+  for (const auto& [v, f] : candidates.vertex_face)
+    for (int k = 0; k < 3; ++k) {
+      const int a = scene.faces(f, k), b = scene.faces(f, (k + 1) % 3);
+      if (overlap(v, a, b)) points.vertex_edge.push_back({v, std::min(a, b), std::max(a, b)});
+      const std::pair<int, int> pair{std::min(v, a), std::max(v, a)};
+      if (overlap(v, a, a) && !std::binary_search(edges.begin(), edges.end(), pair))
+        points.vertex_vertex.push_back({pair.first, pair.second});
+    }
+  const auto unique = [](auto& list) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  };
+  unique(points.vertex_edge);
+  unique(points.vertex_vertex);
+  return points;
+}
 
 const DenseList* dense_list(const std::string& name) {
   static std::map<std::string, DenseList> lists;
@@ -54,6 +103,9 @@ const DenseList* dense_list(const std::string& name) {
   const MeshView view{list.scene.positions_t0, list.scene.positions_t1, list.scene.faces};
   list.mean_edge_length = scenes::mean_edge_length(view);
   list.candidates = scenes::swept_box_candidates(view, list.mean_edge_length);
+  list.points = point_candidates(list.scene, list.candidates, list.mean_edge_length);
+  for (const auto& [v, a, b] : list.points.vertex_edge) list.vertex_edge_as_edge_edge.push_back({v, v, a, b});
+  for (const auto& [p, q] : list.points.vertex_vertex) list.vertex_vertex_as_edge_edge.push_back({p, p, q, q});
   return &lists.emplace(name, std::move(list)).first->second;
 }
 
@@ -71,12 +123,32 @@ constexpr Stages kStages[] = {{"", lab::Settings{}.filter_pieces, lab::Settings{
                               {"/pieces_2", 2, true},
                               {"/pieces_8", 8, true}};
 
-void MeshCcdOnDenseList(benchmark::State& state, const std::string& name, double separation, Stages stages) {
+// The lists a row evaluates: the broad phase's vertex-face and edge-edge
+// lists, or one of the point kinds' (point_candidates).
+// The edge-edge list alone, to compare the point kinds' with. As edge-edge
+// candidates: the same point lists as edge-edge queries of a zero-length
+// edge.
+enum class Lists { faces_and_edges, edge_edge, vertex_edge, vertex_vertex, vertex_edge_as_ee, vertex_vertex_as_ee };
+
+CandidateLists lists_of(const DenseList& list, Lists which) {
+  switch (which) {
+    case Lists::edge_edge: return {.edge_edge = list.candidates.edge_edge};
+    case Lists::vertex_edge: return {.vertex_edge = list.points.vertex_edge};
+    case Lists::vertex_vertex: return {.vertex_vertex = list.points.vertex_vertex};
+    case Lists::vertex_edge_as_ee: return {.edge_edge = list.vertex_edge_as_edge_edge};
+    case Lists::vertex_vertex_as_ee: return {.edge_edge = list.vertex_vertex_as_edge_edge};
+    default: return list.candidates;
+  }
+}
+
+void MeshCcdOnDenseList(benchmark::State& state, const std::string& name, double separation, Stages stages,
+                        Lists which) {
   const DenseList* list = dense_list(name);
   if (list == nullptr) {
     state.SkipWithError("../shared/data/scenes is absent");
     return;
   }
+  const CandidateLists candidates = lists_of(*list, which);
   Options options;
   options.threads = 1;
   options.per_candidate_results = false;
@@ -86,9 +158,9 @@ void MeshCcdOnDenseList(benchmark::State& state, const std::string& name, double
   const MeshView view{list->scene.positions_t0, list->scene.positions_t1, list->scene.faces};
   BatchResult result;
   // First touch and allocation outside the timing.
-  lab::mesh_ccd(view, list->candidates, MinDistances{}, options, settings, result);
+  lab::mesh_ccd(view, candidates, MinDistances{}, options, settings, result);
   for (auto _ : state) {
-    lab::mesh_ccd(view, list->candidates, MinDistances{}, options, settings, result);
+    lab::mesh_ccd(view, candidates, MinDistances{}, options, settings, result);
     benchmark::DoNotOptimize(result.earliest_toi);
   }
   const Counters& c = result.counters;
@@ -219,7 +291,22 @@ const bool registered = [] {
         benchmark::RegisterBenchmark(("MeshCcdOnDenseList/" + std::string(name) + "/min_distance_" +
                                       std::to_string(separation).substr(0, 5) + stages.name)
                                          .c_str(),
-                                     MeshCcdOnDenseList, std::string(name), separation, stages)
+                                     MeshCcdOnDenseList, std::string(name), separation, stages,
+                                     Lists::faces_and_edges)
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime();
+  // The point kinds' lists, with the default stages.
+  for (const char* name : kSceneNames)
+    for (const double separation : kSeparations)
+      for (const auto& [kind, which] : {std::pair{"edge_edge", Lists::edge_edge},
+                                        std::pair{"vertex_edge", Lists::vertex_edge},
+                                        std::pair{"vertex_vertex", Lists::vertex_vertex},
+                                        std::pair{"vertex_edge/as_edge_edge", Lists::vertex_edge_as_ee},
+                                        std::pair{"vertex_vertex/as_edge_edge", Lists::vertex_vertex_as_ee}})
+        benchmark::RegisterBenchmark(("MeshCcdOnDenseList/" + std::string(name) + "/min_distance_" +
+                                      std::to_string(separation).substr(0, 5) + "/" + kind)
+                                         .c_str(),
+                                     MeshCcdOnDenseList, std::string(name), separation, kStages[0], which)
             ->Unit(benchmark::kMillisecond)
             ->UseRealTime();
   for (const char* name : kSceneNames)

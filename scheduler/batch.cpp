@@ -3,15 +3,16 @@
 #include "batchccd/lab.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <vector>
 #include <string>
 
 #include <tbb/blocked_range.h>
-#include <tbb/combinable.h>
-#include <tbb/enumerable_thread_specific.h>
+#include <tbb/task_arena.h>
 #include <tbb/partitioner.h>
 #include <tbb/parallel_for.h>
 
@@ -55,7 +56,76 @@ void tally(const reference::Evaluation& e, Partial& partial) {
 // candidates, the scalar path for the survivors. Results land at fixed
 // places and the reductions (sums, minimum) do not depend on order, so the
 // outcome is the same for any thread count.
-using Partials = tbb::combinable<Partial>;
+
+// Each worker's Partial, by its slot in the current arena: storage the
+// caller keeps (CallStorage), so that a repeated call allocates nothing.
+class Partials {
+ public:
+  // Slots are never dropped: a call with fewer workers keeps the others'
+  // lists for the next call with more.
+  explicit Partials(std::vector<Partial>& slots) : slots_(slots) {
+    const auto workers = static_cast<std::size_t>(tbb::this_task_arena::max_concurrency());
+    if (slots_.size() < workers) slots_.resize(workers);
+    for (Partial& partial : slots_) {
+      partial.counters = {};
+      partial.earliest_toi = std::numeric_limits<double>::infinity();
+      partial.hits.clear();
+    }
+  }
+  // The calling worker's (a thread outside any arena, before the work
+  // starts: the first slot, which no worker holds then).
+  Partial& local() {
+    const int slot = tbb::this_task_arena::current_thread_index();
+    return slots_[slot >= 0 ? static_cast<std::size_t>(slot) : 0];
+  }
+  template <class F>
+  void combine_each(const F& f) const {
+    for (const Partial& partial : slots_) f(partial);
+  }
+  // Room for `hits` in every worker's list: the next call may find them
+  // spread over the workers otherwise.
+  void reserve_hits(std::size_t hits) {
+    for (Partial& partial : slots_) partial.hits.reserve(hits);
+  }
+
+ private:
+  std::vector<Partial>& slots_;
+};
+
+// What a call keeps for the next one on the same host thread, so that a
+// frame loop allocates nothing once these have grown: the lanes' survivors
+// batch by batch, each list's survivors, the workers' partial results, a
+// mesh's packed rows and faces, and its point candidates as edge pairs.
+struct CallStorage {
+  std::vector<std::uint32_t> kept_in_batch;  // the lanes' survivors, batch b's from b * kFilterBatch
+  std::vector<std::size_t> kept_counts;      // how many each batch kept
+  std::array<std::vector<std::size_t>, 4> survivors;
+  std::vector<Partial> partials;
+  simd::PackedPositions packed;
+  simd::PackedFaces faces;
+  std::vector<std::array<int, 4>> point_pairs;
+  bool in_use = false;
+};
+
+// Runs `work(CallStorage&)` with the calling thread's storage, or with
+// storage of its own where a call is already using that one (a call made
+// from a task that TBB ran while the host thread waited in another).
+template <class Work>
+void with_call_storage(const Work& work) {
+  thread_local CallStorage kept;
+  if (kept.in_use) {
+    CallStorage own;
+    own.in_use = true;
+    work(own);
+    return;
+  }
+  kept.in_use = true;
+  struct Release {
+    CallStorage& storage;
+    ~Release() { storage.in_use = false; }
+  } release{kept};
+  work(kept);
+}
 
 // A list's minimum separations: one for all, or one per candidate.
 struct Separations {
@@ -65,39 +135,48 @@ struct Separations {
   double at(std::size_t i) const { return each ? each[i] : all; }
 };
 
-// The lane filters over candidates [0, count) of a source, in batches:
-// the survivors' indices, in no particular order.
+// The lane filters over candidates [0, count) of a source of `kind`'s
+// candidates (a point kind's as edge-edge queries), in batches of
+// kFilterBatch: the survivors' indices, in increasing order, into
+// `survivors`.
 template <class Source>
-std::vector<std::size_t> filter_source(const Source& source, std::size_t count,
-                                       simd::FilterFunction<Source> lanes, const Options& options,
-                                       const lab::Settings& lab, const Separations& separations,
-                                       Partials& partials) {
-  reference::FilterSettings settings = reference::filter_settings(options, lab);
+void filter_source(Kind kind, const Source& source, std::size_t count, simd::FilterFunction<Source> lanes,
+                   const Options& options, const lab::Settings& lab, const Separations& separations,
+                   CallStorage& storage, Partials& partials, std::vector<std::size_t>& survivors) {
+  reference::FilterSettings settings = reference::settings_for(kind, reference::filter_settings(options, lab));
   settings.within = separations.any();
   settings.min_distance = separations.all;
   settings.min_distances = separations.each;
-  tbb::enumerable_thread_specific<std::vector<std::uint32_t>> batch_survivors;
-  tbb::enumerable_thread_specific<std::vector<std::size_t>> survivors;
+  const std::size_t batches = (count + simd::kFilterBatch - 1) / simd::kFilterBatch;
+  // A batch's lanes write within its own candidates' places (FilterFunction).
+  if (storage.kept_in_batch.size() < count) storage.kept_in_batch.resize(count);
+  if (storage.kept_counts.size() < batches) storage.kept_counts.resize(batches);
   tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, count, simd::kFilterBatch),
+      tbb::blocked_range<std::size_t>(0, batches, 1),
       [&](const tbb::blocked_range<std::size_t>& range) {
-        std::vector<std::uint32_t>& kept_in_batch = batch_survivors.local();
-        if (kept_in_batch.size() < range.size()) kept_in_batch.resize(std::max(range.size(), simd::kFilterBatch));
-        simd::FilterCounts culls;
-        const std::size_t kept = lanes(source, range.begin(), range.end(), settings, kept_in_batch.data(), culls);
-        Counters& counters = partials.local().counters;
-        counters.culled += static_cast<std::int64_t>(range.size() - kept);
-        counters.culled_by_sign += static_cast<std::int64_t>(culls.sign);
-        counters.culled_by_separation += static_cast<std::int64_t>(culls.separation);
-        counters.culled_by_pieces += static_cast<std::int64_t>(culls.pieces);
-        counters.culled_by_swept_box += static_cast<std::int64_t>(culls.swept_box);
-        std::vector<std::size_t>& mine = survivors.local();
-        for (std::size_t j = 0; j < kept; ++j) mine.push_back(range.begin() + kept_in_batch[j]);
+        for (std::size_t batch = range.begin(); batch < range.end(); ++batch) {
+          const std::size_t begin = batch * simd::kFilterBatch, end = std::min(count, begin + simd::kFilterBatch);
+          simd::FilterCounts culls;
+          const std::size_t kept = lanes(source, begin, end, settings, storage.kept_in_batch.data() + begin, culls);
+          storage.kept_counts[batch] = kept;
+          Counters& counters = partials.local().counters;
+          counters.culled += static_cast<std::int64_t>(end - begin - kept);
+          counters.culled_by_sign += static_cast<std::int64_t>(culls.sign);
+          counters.culled_by_separation += static_cast<std::int64_t>(culls.separation);
+          counters.culled_by_pieces += static_cast<std::int64_t>(culls.pieces);
+          counters.culled_by_swept_box += static_cast<std::int64_t>(culls.swept_box);
+        }
       },
       tbb::simple_partitioner());
-  std::vector<std::size_t> all;
-  for (const std::vector<std::size_t>& mine : survivors) all.insert(all.end(), mine.begin(), mine.end());
-  return all;
+  std::size_t total = 0;
+  for (std::size_t batch = 0; batch < batches; ++batch) total += storage.kept_counts[batch];
+  survivors.resize(total);
+  std::size_t next = 0;
+  for (std::size_t batch = 0; batch < batches; ++batch) {
+    const std::size_t begin = batch * simd::kFilterBatch;
+    for (std::size_t j = 0; j < storage.kept_counts[batch]; ++j)
+      survivors[next++] = begin + storage.kept_in_batch[begin + j];
+  }
 }
 
 // Results for candidates [0, count) of a source, at results[offset + i]
@@ -152,6 +231,7 @@ void combine(Partials& partials, BatchResult& batch) {
     batch.earliest_toi = std::min(batch.earliest_toi, partial.earliest_toi);
     batch.hits.insert(batch.hits.end(), partial.hits.begin(), partial.hits.end());
   });
+  partials.reserve_hits(batch.hits.size());
 }
 
 // Workers find hits in any order; the list is in candidate order.
@@ -227,15 +307,18 @@ void lab::batch_ccd(Kind kind, std::span<const Query> queries, std::span<const d
   const bool filtered = decider_of(options, lab) != Decider::cubic;  // the baseline runs unfiltered
   const simd::RawQueries source =
       simd::raw_queries(reference::evaluated_kind(kind), queries.data(), queries.size());
-  in_arena(options.threads, [&] {
-    Partials partials;
-    std::vector<std::size_t> survivors;
-    if (filtered)
-      survivors = filter_source(source, queries.size(), kernels.raw, options, lab, separations, partials);
-    reset(out, queries.size(), options);
-    solve_source(source, queries.size(), filtered ? &survivors : nullptr, options, lab, separations, 0, out,
-                 partials);
-    combine(partials, out);
+  with_call_storage([&](CallStorage& storage) {
+    in_arena(options.threads, [&] {
+      Partials partials(storage.partials);
+      std::vector<std::size_t>& survivors = storage.survivors[0];
+      if (filtered)
+        filter_source(kind, source, queries.size(), kernels.raw, options, lab, separations, storage, partials,
+                      survivors);
+      reset(out, queries.size(), options);
+      solve_source(source, queries.size(), filtered ? &survivors : nullptr, options, lab, separations, 0, out,
+                   partials);
+      combine(partials, out);
+    });
   });
   sort_hits(out);
 }
@@ -260,18 +343,18 @@ BatchResult batch_ccd(Kind kind, std::span<const Query> queries, const Options& 
   return lab::batch_ccd(kind, queries, options, {});
 }
 
+namespace {
+
 // Point-edge and point-point candidates as the edge-edge candidates they
-// are (Query's layout): the point a zero-length edge.
-std::vector<std::array<int, 4>> as_edge_edge(const CandidateLists& candidates, const Options& options) {
-  std::vector<std::array<int, 4>> pairs;
+// are (Query's layout): the point a zero-length edge. Into `pairs`, whose
+// storage is kept.
+void as_edge_edge(const CandidateLists& candidates, const Options& options, std::vector<std::array<int, 4>>& pairs) {
+  pairs.clear();
   if (options.vertex_edge)
     for (const auto& [vertex, e0, e1] : candidates.vertex_edge) pairs.push_back({vertex, vertex, e0, e1});
   if (options.vertex_vertex)
     for (const auto& [p, q] : candidates.vertex_vertex) pairs.push_back({p, p, q, q});
-  return pairs;
 }
-
-namespace {
 
 // A mesh call's four lists once the lane filters have run: where each
 // list's candidates come from, how many there are (0 when Options switches
@@ -307,45 +390,50 @@ void filter_mesh(const MeshView& mesh, const CandidateLists& candidates, const M
       separations_of(min_distances.edge_edge, candidates.edge_edge.size(), "edge-edge", options, lab),
       separations_of(min_distances.vertex_edge, candidates.vertex_edge.size(), "vertex-edge", options, lab),
       separations_of(min_distances.vertex_vertex, candidates.vertex_vertex.size(), "vertex-vertex", options, lab)};
-  in_arena(options.threads, [&] {
-    // The lane filters check the ids of every list they read on the way;
-    // here the rest: shapes, faces, lists switched off, the baseline's lists.
-    check_mesh(mesh, candidates, {.vertex_face = !filtered || !options.vertex_face,
-                                  .edge_edge = !filtered || !options.edge_edge,
-                                  .vertex_edge = !filtered || !options.vertex_edge,
-                                  .vertex_vertex = !filtered || !options.vertex_vertex});
-    simd::PackedPositions packed(mesh.positions_t0.rows());
-    tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, mesh.positions_t0.rows(), 1 << 14),
-                      [&](const tbb::blocked_range<std::int64_t>& rows) {
-                        packed.pack(mesh.positions_t0, mesh.positions_t1, rows.begin(), rows.end());
-                      });
-    // Faces only where the vertex-face list is read.
-    const simd::PackedFaces faces(mesh.faces, counts[0] > 0 ? mesh.faces.rows() : 0);
-    const std::vector<std::array<int, 4>> point_pairs = as_edge_edge(candidates, options);
-    const simd::MeshVertexFace vertex_face_source{packed.view(), faces.view(), candidates.vertex_face.data()};
-    const simd::MeshEdgeEdge edge_edge_source{packed.view(), candidates.edge_edge.data()};
-    const simd::MeshEdgeEdge vertex_edge_source{packed.view(), point_pairs.data()};
-    const simd::MeshEdgeEdge vertex_vertex_source{packed.view(), point_pairs.data() + counts[2]};
-    Partials partials;
-    std::array<std::vector<std::size_t>, 4> survivors;
-    if (filtered) {
-      try {
-        survivors[0] = filter_source(vertex_face_source, counts[0], kernels.vertex_face, options, lab,
-                                     separations[0], partials);
-        survivors[1] = filter_source(edge_edge_source, counts[1], kernels.edge_edge, options, lab,
-                                     separations[1], partials);
-        survivors[2] = filter_source(vertex_edge_source, counts[2], kernels.edge_edge, options, lab,
-                                     separations[2], partials);
-        survivors[3] = filter_source(vertex_vertex_source, counts[3], kernels.edge_edge, options, lab,
-                                     separations[3], partials);
-      } catch (const simd::IndexOutOfRange&) {
-        check_mesh(mesh, candidates);  // names the first bad id
-        throw std::logic_error("mesh_ccd: a filter found an index out of range that check_mesh did not");
+  with_call_storage([&](CallStorage& storage) {
+    in_arena(options.threads, [&] {
+      // The lane filters check the ids of every list they read on the way;
+      // here the rest: shapes, faces, lists switched off, the baseline's lists.
+      check_mesh(mesh, candidates, {.vertex_face = !filtered || !options.vertex_face,
+                                    .edge_edge = !filtered || !options.edge_edge,
+                                    .vertex_edge = !filtered || !options.vertex_edge,
+                                    .vertex_vertex = !filtered || !options.vertex_vertex});
+      simd::PackedPositions& packed = storage.packed;
+      packed.resize(mesh.positions_t0.rows());
+      tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, mesh.positions_t0.rows(), 1 << 14),
+                        [&](const tbb::blocked_range<std::int64_t>& rows) {
+                          packed.pack(mesh.positions_t0, mesh.positions_t1, rows.begin(), rows.end());
+                        });
+      // Faces only where the vertex-face list is read.
+      storage.faces.assign(mesh.faces, counts[0] > 0 ? mesh.faces.rows() : 0);
+      as_edge_edge(candidates, options, storage.point_pairs);
+      const std::array<int, 4>* point_pairs = storage.point_pairs.data();
+      const simd::MeshVertexFace vertex_face_source{packed.view(), storage.faces.view(),
+                                                    candidates.vertex_face.data()};
+      const simd::MeshEdgeEdge edge_edge_source{packed.view(), candidates.edge_edge.data()};
+      const simd::MeshEdgeEdge vertex_edge_source{packed.view(), point_pairs};
+      const simd::MeshEdgeEdge vertex_vertex_source{packed.view(), point_pairs + counts[2]};
+      Partials partials(storage.partials);
+      std::array<std::vector<std::size_t>, 4>& survivors = storage.survivors;
+      if (filtered) {
+        try {
+          filter_source(Kind::vertex_face, vertex_face_source, counts[0], kernels.vertex_face, options, lab,
+                        separations[0], storage, partials, survivors[0]);
+          filter_source(Kind::edge_edge, edge_edge_source, counts[1], kernels.edge_edge, options, lab,
+                        separations[1], storage, partials, survivors[1]);
+          filter_source(Kind::vertex_edge, vertex_edge_source, counts[2], kernels.edge_edge, options, lab,
+                        separations[2], storage, partials, survivors[2]);
+          filter_source(Kind::vertex_vertex, vertex_vertex_source, counts[3], kernels.edge_edge, options, lab,
+                        separations[3], storage, partials, survivors[3]);
+        } catch (const simd::IndexOutOfRange&) {
+          check_mesh(mesh, candidates);  // names the first bad id
+          throw std::logic_error("mesh_ccd: a filter found an index out of range that check_mesh did not");
+        }
       }
-    }
-    FilteredMesh lists{vertex_face_source, edge_edge_source, vertex_edge_source, vertex_vertex_source,
-                       counts, separations, survivors, filtered};
-    then(lists, partials);
+      FilteredMesh lists{vertex_face_source, edge_edge_source, vertex_edge_source, vertex_vertex_source,
+                         counts, separations, survivors, filtered};
+      then(lists, partials);
+    });
   });
 }
 

@@ -588,9 +588,11 @@ template <class Arch, class Source>
   const Mask culled =
       settings.within
           ? Mask(reference::separation_filter_culls_within(
-                source.kind, frame.relative, Double(error.relative), Double(error.floor),
+                reference::separation_kind(source.kind, settings), frame.relative, Double(error.relative),
+                Double(error.floor),
                 frame.scaled_length(lane_separations<Arch>(settings, group))))
-          : Mask(reference::separation_filter_culls(source.kind, frame.relative, Double(error.relative),
+          : Mask(reference::separation_filter_culls(reference::separation_kind(source.kind, settings), frame.relative,
+                                                    Double(error.relative),
                                                     Double(error.floor)));
   return lane_bits<Arch>(culled & enabled & frame.evaluable);
 }
@@ -702,9 +704,11 @@ template <class Arch, class Source>
     const std::uint32_t kept = ~culled.sign & lanes_in_use;
     const auto culls =
         settings.within
-            ? reference::separation_filter_culls_within(source.kind, differences.relative, Double(error.relative),
+            ? reference::separation_filter_culls_within(reference::separation_kind(source.kind, settings),
+                                                        differences.relative, Double(error.relative),
                                                         Double(error.floor), lane_separations<Arch>(settings, group))
-            : reference::separation_filter_culls(source.kind, differences.relative, Double(error.relative),
+            : reference::separation_filter_culls(reference::separation_kind(source.kind, settings),
+                                                 differences.relative, Double(error.relative),
                                                  Double(error.floor));
     culled.separation = kept & lane_bits<Arch>(direct & culls);
     const std::uint32_t scaled_lanes = ~lane_bits<Arch>(direct) & kept;
@@ -730,13 +734,14 @@ template <class Arch, class Source>
   if (open == 0) return 0;
   const Double separation = settings.within ? lane_separations<Arch>(settings, group) : Double(0.0);
   const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
+  const Kind kind = reference::separation_kind(source.kind, settings);
   const reference::SeparationMeasures<Double> measured =
-      reference::separation_measures(source.kind, differences.relative, Double(error.relative), Double(error.floor));
+      reference::separation_measures(kind, differences.relative, Double(error.relative), Double(error.floor));
   reference::SignTest<Double> test{};
   if (settings.sign)
     test = reference::sign_test(differences.relative, differences.largest,
                                 Double(reference::direct_coefficient_error().floor), settings.certified);
-  return open & lane_bits<Arch>(reference::piecewise_culls(settings.pieces, source.kind, differences.relative,
+  return open & lane_bits<Arch>(reference::piecewise_culls(settings.pieces, kind, differences.relative,
                                                            measured, Double(error.relative), Double(error.floor),
                                                            settings.sign ? &test : nullptr, differences.largest,
                                                            settings.certified, settings.within, separation));

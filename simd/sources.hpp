@@ -72,11 +72,23 @@ struct MeshPositions {
 class PackedPositions {
  public:
   // Room for `vertices` rows; pack() fills them.
-  explicit PackedPositions(std::int64_t vertices)
-      : vertices_(vertices), rows_(allocate<double>(vertices)), coarse_(allocate<float>(vertices)) {}
+  explicit PackedPositions(std::int64_t vertices = 0) { resize(vertices); }
   // All rows at once.
   PackedPositions(const PositionsView& t0, const PositionsView& t1) : PackedPositions(t0.rows()) {
     pack(t0, t1, 0, t0.rows());
+  }
+
+  // Room for `vertices` rows again, to be packed anew: the storage is kept
+  // when it is large enough (a frame loop packs every call).
+  void resize(std::int64_t vertices) {
+    if (vertices > capacity_ || !rows_) {
+      capacity_ = std::max<std::int64_t>(vertices, 1);
+      rows_ = allocate<double>(capacity_);
+      coarse_ = allocate<float>(capacity_);
+    }
+    vertices_ = vertices;
+    finite_.store(true, std::memory_order_relaxed);
+    coarse_usable_.store(true, std::memory_order_relaxed);
   }
 
   // Rows [begin, end): callers may fill disjoint ranges in parallel.
@@ -134,10 +146,11 @@ class PackedPositions {
   };
   template <class T>
   static std::unique_ptr<T[], Free> allocate(std::int64_t vertices) {
-    const auto rows = static_cast<std::size_t>(std::max<std::int64_t>(vertices, 1));
+    const auto rows = static_cast<std::size_t>(vertices);
     return {static_cast<T*>(::operator new[](sizeof(T) * kRowDoubles * rows, std::align_val_t(64))), Free{}};
   }
-  std::int64_t vertices_;
+  std::int64_t vertices_ = 0;
+  std::int64_t capacity_ = 0;  // rows the storage holds
   std::unique_ptr<double[], Free> rows_;
   std::unique_ptr<float[], Free> coarse_;
   std::atomic<bool> finite_{true};
@@ -156,8 +169,12 @@ struct MeshFaces {
 // without a multiplication (vertex-face lanes 1.01x to 1.02x).
 class PackedFaces {
  public:
+  PackedFaces() = default;
   // The first `count` faces.
-  PackedFaces(const IdsView& faces, std::int64_t count) : rows_(static_cast<std::size_t>(count)) {
+  PackedFaces(const IdsView& faces, std::int64_t count) { assign(faces, count); }
+  // The same anew, keeping the storage (a frame loop packs every call).
+  void assign(const IdsView& faces, std::int64_t count) {
+    rows_.resize(static_cast<std::size_t>(count));
     for (std::int64_t f = 0; f < count; ++f)
       rows_[static_cast<std::size_t>(f)] = {row_start(faces(f, 0)), row_start(faces(f, 1)),
                                             row_start(faces(f, 2)), 0};

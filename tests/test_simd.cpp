@@ -3,6 +3,7 @@
 // adversarial and real queries, raw and from meshes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -291,6 +292,114 @@ TEST(SimdKernels, MatchTheReferenceFilterOnMeshIndexLists) {
       }
     }
   }
+}
+
+// The point kinds (vertex-edge, vertex-vertex: edge-edge queries of a
+// point, Query's layout) under their own separation filter
+// (FilterSettings::point_kind), lanes against the reference: raw queries
+// from the adversarial generator made into points, and mesh lists over
+// finite and poisoned vertices.
+Query as_point_kind(Kind kind, Query q) {
+  q.points[1] = q.points[0], q.points[5] = q.points[4];
+  if (kind == Kind::vertex_vertex) q.points[3] = q.points[2], q.points[7] = q.points[6];
+  return q;
+}
+
+TEST(SimdKernels, MatchTheReferenceFilterOnPointKinds) {
+  const auto kernels = vector_kernels();
+  if (kernels.empty()) GTEST_SKIP() << "no vector instruction set on this processor";
+#if defined(__SANITIZE_ADDRESS__)
+  constexpr std::size_t kQueries = 1 << 12;
+#else
+  constexpr std::size_t kQueries = 1 << 15;  // streamed (6 MB): the lanes prefetch
+#endif
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> coordinate(-1, 1);
+  const int vertices = 200, pairs = 20000;
+  Eigen::MatrixXd t0(vertices, 3), t1(vertices, 3);
+  for (int i = 0; i < vertices; ++i)
+    for (int c = 0; c < 3; ++c) t0(i, c) = coordinate(random), t1(i, c) = t0(i, c) + 0.1 * coordinate(random);
+  t0.row(13) *= 1e300, t1.row(13) *= 1e300;  // outside the direct frames' window
+  t0.row(31) *= 1e-310, t1.row(31) *= 1e-310;
+  t0.row(37) = t0.row(36), t1.row(37) = t1.row(36);  // a zero-length edge (36, 37)
+  Eigen::MatrixXd poisoned_t0 = t0;
+  poisoned_t0(3, 1) = std::numeric_limits<double>::quiet_NaN();
+  std::uniform_int_distribution<int> vertex(0, vertices - 1);
+  std::vector<std::array<int, 4>> vertex_edge(pairs), vertex_vertex(pairs);
+  for (auto& p : vertex_edge) {  // one in ten against the zero-length edge
+    const int v = vertex(random), a = vertex(random);
+    p = a % 10 == 0 ? std::array{v, v, 36, 37} : std::array{v, v, a, vertex(random)};
+  }
+  for (auto& p : vertex_vertex) {
+    const int v = vertex(random), w = vertex(random);
+    p = {v, v, w, w};
+  }
+  QueryGenerator generator(20261127);
+  for (const Kind kind : {Kind::vertex_edge, Kind::vertex_vertex}) {
+    std::vector<Query> queries(kQueries);
+    for (Query& q : queries) q = as_point_kind(kind, generator.next());
+    const simd::RawQueries raw = simd::raw_queries(Kind::edge_edge, queries.data(), queries.size());
+    const auto& list = kind == Kind::vertex_edge ? vertex_edge : vertex_vertex;
+    for (const bool poisoned : {false, true}) {
+      const simd::PackedPositions packed(poisoned ? poisoned_t0 : t0, t1);
+      const simd::MeshEdgeEdge mesh{packed.view(), list.data()};
+      for (reference::FilterSettings settings : all_settings()) {
+        settings.point_kind = kind;
+        const std::string what = std::string(to_string(kind)) + " " + describe(settings);
+        const auto raw_expected = survivors(simd::kScalarKernels.raw, raw, 3, queries.size() - 5, settings);
+        const auto mesh_expected = survivors(simd::kScalarKernels.edge_edge, mesh, 1, pairs, settings);
+        for (const simd::FilterKernels* k : kernels) {
+          if (!poisoned) {
+            EXPECT_EQ(survivors(k->raw, raw, 3, queries.size() - 5, settings), raw_expected)
+                << to_string(k->isa) << " " << what;
+          }
+          EXPECT_EQ(survivors(k->edge_edge, mesh, 1, pairs, settings), mesh_expected)
+              << to_string(k->isa) << " " << what << (poisoned ? " poisoned mesh" : " mesh");
+        }
+      }
+    }
+  }
+}
+
+// The point kinds' separation filter culls no query that comes within its
+// separation: sampled distances (a point against a segment, or a point) at
+// 1,025 times, against the scalar reference's culls, for point-kind
+// queries whose motion passes near each other.
+TEST(SimdKernels, PointKindCullsAreSound) {
+  std::mt19937_64 random(13);
+  std::uniform_real_distribution<double> coordinate(-1, 1);
+  const auto distance_at = [](Kind kind, const Query& q, double t) {
+    const auto at = [&](int k) -> Vec3 { return (1 - t) * q.points[k] + t * q.points[k + 4]; };
+    const Vec3 p = at(0), a = at(2), b = at(3);
+    if (kind == Kind::vertex_vertex) return (p - a).norm();
+    const Vec3 d = b - a;
+    const double along = d.squaredNorm() > 0 ? std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+    return (p - (a + along * d)).norm();
+  };
+  int culled = 0, near = 0;
+  for (const Kind kind : {Kind::vertex_edge, Kind::vertex_vertex})
+    for (int n = 0; n < 20000; ++n) {
+      Query q;
+      for (Vec3& p : q.points) p = {coordinate(random), coordinate(random), coordinate(random)};
+      q = as_point_kind(kind, q);
+      for (int k = 4; k < 8; ++k) q.points[k] = q.points[k - 4] + 0.3 * (q.points[k] - q.points[k - 4]);
+      const double separation = std::ldexp(1.0, -static_cast<int>(random() % 8));
+      double closest = std::numeric_limits<double>::infinity();
+      for (int i = 0; i <= 1024; ++i) closest = std::min(closest, distance_at(kind, q, i / 1024.0));
+      for (bool within : {false, true}) {
+        reference::FilterSettings settings{.sign = false, .pieces = 4, .within = within,
+                                           .min_distance = within ? separation : 0.0, .point_kind = kind};
+        const bool cull = reference::run_filters(Kind::edge_edge, q, settings).culled();
+        culled += cull;
+        const bool comes_near = closest <= (within ? separation : 0.0) * 0.999;
+        near += comes_near;
+        if (comes_near) {
+          EXPECT_FALSE(cull) << to_string(kind) << " query " << n;
+        }
+      }
+    }
+  EXPECT_GT(culled, 10000);  // the filter culls, and some queries come near
+  EXPECT_GT(near, 100);
 }
 
 // The second pass gets survivors with a gap, and a last partial group whose

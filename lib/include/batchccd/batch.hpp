@@ -153,9 +153,9 @@ BatchResult mesh_ccd(const MeshView& mesh, const CandidateLists& candidates,
                      const Options& options = {});
 
 // The same calls writing into `out`, whose vectors keep their storage: a
-// frame loop that passes one BatchResult every step allocates nothing for
-// its results once they have grown to size, and they are written in
-// parallel. What a call refuses (the exceptions above) leaves `out` as it was.
+// frame loop that passes one BatchResult every step allocates nothing once
+// its results (and the working storage each host thread keeps for its
+// calls) have grown to size, and they are written in parallel. What a call refuses (the exceptions above) leaves `out` as it was.
 void batch_ccd(Kind kind, std::span<const Query> queries, const Options& options, BatchResult& out);
 void mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const Options& options,
               BatchResult& out);

@@ -90,9 +90,9 @@ FilterVerdict pieces_stage(Kind kind, const DirectFrame& direct, const Separatio
     const SeparationErrorModel error = separation_error(0.0, settings.certified);
     const SignTest<double> test =
         sign_test(direct.relative, direct.largest, direct_coefficient_error().floor, settings.certified);
-    verdict.pieces = piecewise_culls(settings.pieces, kind, direct.relative, measured, error.relative, error.floor,
-                                     settings.sign ? &test : nullptr, direct.largest, settings.certified,
-                                     settings.within, separation);
+    verdict.pieces = piecewise_culls(settings.pieces, separation_kind(kind, settings), direct.relative, measured,
+                                     error.relative, error.floor, settings.sign ? &test : nullptr, direct.largest,
+                                     settings.certified, settings.within, separation);
   }
   return verdict;
 }
@@ -117,8 +117,8 @@ FilterVerdict run_filters_within(Kind kind, const Query& query, const FilterSett
   SeparationMeasures<double> measured{};
   if (separation_due && later) {
     const SeparationErrorModel error = separation_error(0.0, settings.certified);
-    verdict.separation =
-        separation_filter_culls_within(kind, direct.relative, error.relative, error.floor, separation, &measured);
+    verdict.separation = separation_filter_culls_within(separation_kind(kind, settings), direct.relative,
+                                                        error.relative, error.floor, separation, &measured);
     return pieces_stage(kind, direct, measured, settings, separation, verdict);
   }
   if (!sign_scaled && !boxes_scaled && !separation_due) return verdict;
@@ -134,7 +134,8 @@ FilterVerdict run_filters_within(Kind kind, const Query& query, const FilterSett
                                         settings.certified, scaled_separation);
   if (settings.separation && !verdict.sign) {
     const SeparationErrorModel error = separation_error(scaled.absolute_error, settings.certified);
-    verdict.separation = error.enabled && separation_filter_culls_within(kind, frame.relative, error.relative,
+    verdict.separation = error.enabled && separation_filter_culls_within(separation_kind(kind, settings),
+                                                                         frame.relative, error.relative,
                                                                          error.floor, scaled_separation);
   }
   return verdict;
@@ -166,7 +167,8 @@ FilterVerdict run_filters(Kind kind, const Query& query, const FilterSettings& s
   SeparationMeasures<double> measured{};
   if (separation_due && later) {
     const SeparationErrorModel error = separation_error(0.0, settings.certified);
-    verdict.separation = separation_filter_culls(kind, direct.relative, error.relative, error.floor, &measured);
+    verdict.separation = separation_filter_culls(separation_kind(kind, settings), direct.relative, error.relative,
+                                                 error.floor, &measured);
     return pieces_stage(kind, direct, measured, settings, 0.0, verdict);
   }
   if (!sign_scaled && !separation_due) return verdict;
@@ -179,7 +181,8 @@ FilterVerdict run_filters(Kind kind, const Query& query, const FilterSettings& s
   if (settings.separation && !verdict.sign) {
     const SeparationErrorModel error = separation_error(scaled.absolute_error, settings.certified);
     verdict.separation =
-        error.enabled && separation_filter_culls(kind, frame.relative, error.relative, error.floor);
+        error.enabled &&
+        separation_filter_culls(separation_kind(kind, settings), frame.relative, error.relative, error.floor);
   }
   return verdict;
 }

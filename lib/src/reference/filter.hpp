@@ -25,6 +25,10 @@ struct FilterSettings {
   bool within = false;
   double min_distance = 0;                 // for every candidate,
   const double* min_distances = nullptr;   // or one per candidate
+  // Edge-edge candidates that are a point's (Query's layout): Kind::vertex_edge
+  // or vertex_vertex, whose separation filter and pieces take the point's
+  // own distances (separation_kind). Kind::edge_edge otherwise.
+  Kind point_kind = Kind::edge_edge;
   double separation_of(std::size_t candidate) const {
     return min_distances != nullptr ? min_distances[candidate] : min_distance;
   }
@@ -36,6 +40,25 @@ inline FilterSettings filter_settings(const Options& options, const lab::Setting
   const int pieces = asked == 2 || asked == 4 || asked == 8 ? asked : 1;
   return {decider_of(options, lab) != Decider::fast, lab.sign_filter, lab.sign_filter_subdivision,
           lab.separation_filter, pieces, lab.swept_box_filter, options.min_distance > 0, options.min_distance};
+}
+
+// The settings for candidates of `kind`. A point kind's (vertex-edge,
+// vertex-vertex: edge-edge queries with a zero-length edge) skip the sign
+// filters, which cannot cull them (their cubic and normal vanish), and
+// take the separation filter and its pieces with the point's own
+// distances (docs/design.md §11).
+inline FilterSettings settings_for(Kind kind, FilterSettings settings) {
+  if (kind == Kind::vertex_edge || kind == Kind::vertex_vertex) {
+    settings.sign = false;
+    settings.point_kind = kind;
+  }
+  return settings;
+}
+
+// The kind whose distances the separation filter and its pieces take for
+// a source of `kind` (Kind::vertex_face or edge_edge, the queries' layout).
+inline Kind separation_kind(Kind kind, const FilterSettings& settings) {
+  return kind == Kind::edge_edge ? settings.point_kind : kind;
 }
 
 // What each filter said of one query. The swept boxes run first, then the

@@ -128,10 +128,15 @@ void inner_distance_lower_bounds(Kind kind, const Vector3<T> (&relative)[3][2], 
   for (int j = 1; j < pieces; ++j) {
     const auto& p = position[j];
     const auto& m = magnitude[j];
-    const T distance2 =
-        kind == Kind::vertex_face
-            ? vertex_face_distance2(p[0], m[0], p[1], m[1], p[2], m[2], relative_bound, floor)
-            : edge_edge_distance2(p[0], m[0], p[1], m[1], p[2], m[2], relative_bound, floor);
+    T distance2;
+    switch (kind) {  // the point kinds' own distances, as distance2_at
+      case Kind::vertex_face:
+        distance2 = vertex_face_distance2(p[0], m[0], p[1], m[1], p[2], m[2], relative_bound, floor);
+        break;
+      case Kind::vertex_edge: distance2 = point_edge_distance2(p[1], m[1], p[2], m[2], relative_bound, floor); break;
+      case Kind::vertex_vertex: distance2 = point_point_distance2(p[1], m[1], relative_bound, floor); break;
+      default: distance2 = edge_edge_distance2(p[0], m[0], p[1], m[1], p[2], m[2], relative_bound, floor);
+    }
     distance[j] = sqrt(distance2) * shrink;
   }
 }

@@ -181,6 +181,49 @@ T edge_edge_distance2(const Vector3<T>& a1, const Vector3<T>& b0, const Vector3<
   return edge_edge_distance2(a1, absolute(a1), b0, absolute(b0), b1, absolute(b1), relative, floor);
 }
 
+// Squared distance at t = 0, lower bound: the point x1 (the origin; x2 is
+// the same point, Query's layout) against the segment (x3, x4) of a
+// vertex-edge query. Off the segment's line by |b0 x d| / |d| (d = b1 - b0),
+// along it by the gap between 0 and the ends' projections onto d: parts at
+// right angles, whose squares add.
+template <class T>
+T point_edge_distance2(const Vector3<T>& b0, const Vector3<T>& b0m, const Vector3<T>& b1, const Vector3<T>& b1m,
+                       T relative, T floor) {
+  using std::abs;
+  const Vector3<T> d = b1 - b0, dm = b1m + b0m;
+  const Bounded<T> d2 = bounded_dot(d, dm, d, dm);
+  const Vector3<T> off = cross(b0, d), off_magnitude = cross_magnitude(b0m, dm);
+  const auto lower = [&](const T& value, const T& magnitude) {
+    return max_of(abs(value) - (relative * magnitude + floor), T(0));
+  };
+  const T x = lower(off.x, off_magnitude.x), y = lower(off.y, off_magnitude.y), z = lower(off.z, off_magnitude.z);
+  const T room = d2.value + (relative * d2.magnitude + floor);
+  const T line = select(room > T(0), (x * x + y * y + z * z) / room, T(0));
+  const Bounded<T> point[2] = {{T(0), T(0)}, {T(0), T(0)}};
+  const Bounded<T> ends[2] = {bounded_dot(b0, b0m, d, dm), bounded_dot(b1, b1m, d, dm)};
+  // Each part rounded at most 8 times up (shrink's margin), the sum once.
+  return line * T(SeparationErrors::shrink) + squared_gap_bound(point, ends, d2, relative, floor).value();
+}
+template <class T>
+T point_edge_distance2(const Vector3<T>& b0, const Vector3<T>& b1, T relative, T floor) {
+  return point_edge_distance2(b0, absolute(b0), b1, absolute(b1), relative, floor);
+}
+
+// The same for a vertex-vertex query: the origin against the point x3.
+template <class T>
+T point_point_distance2(const Vector3<T>& b, const Vector3<T>& bm, T relative, T floor) {
+  using std::abs;
+  const auto lower = [&](const T& value, const T& magnitude) {
+    return max_of(abs(value) - (relative * magnitude + floor), T(0));
+  };
+  const T x = lower(b.x, bm.x), y = lower(b.y, bm.y), z = lower(b.z, bm.z);
+  return (x * x + y * y + z * z) * T(SeparationErrors::shrink);
+}
+template <class T>
+T point_point_distance2(const Vector3<T>& b, T relative, T floor) {
+  return point_point_distance2(b, absolute(b), relative, floor);
+}
+
 // Squared largest relative displacement over the step, upper bound. moved[i]
 // is x_{i+2}(1) - x_{i+2}(0) (x1 does not move in this frame).
 template <class T>
@@ -203,13 +246,19 @@ T largest_displacement2(Kind kind, const Vector3<T> (&moved)[3], const Vector3<T
   return largest;
 }
 
+// Point kinds: their own distances (for edge-edge queries of a point,
+// Query's layout; relative[0] is zero).
 template <class T>
 T distance2_at(Kind kind, const Vector3<T> (&relative)[3][2], int end, T error_relative, T floor) {
-  return kind == Kind::vertex_face
-             ? vertex_face_distance2(relative[0][end], relative[1][end], relative[2][end],
-                                     error_relative, floor)
-             : edge_edge_distance2(relative[0][end], relative[1][end], relative[2][end],
-                                   error_relative, floor);
+  switch (kind) {
+    case Kind::vertex_face:
+      return vertex_face_distance2(relative[0][end], relative[1][end], relative[2][end], error_relative, floor);
+    case Kind::vertex_edge:
+      return point_edge_distance2(relative[1][end], relative[2][end], error_relative, floor);
+    case Kind::vertex_vertex: return point_point_distance2(relative[1][end], error_relative, floor);
+    default:
+      return edge_edge_distance2(relative[0][end], relative[1][end], relative[2][end], error_relative, floor);
+  }
 }
 
 // The filter: true (per lane) when the primitives certainly stay apart.
