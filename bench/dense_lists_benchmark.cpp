@@ -17,20 +17,28 @@
 // the share culled by each lane filter stage, the survivors' share and the
 // hits. Ratios between separations are only meaningful within one run.
 // MethodOnDenseList: the modes and the cubic baseline at no separation,
-// with where the time goes.
+// with where the time goes. EarliestToi: mesh_ccd asked for the earliest
+// TOI alone (a shrinking window) against per-candidate results.
+// CollisionFreeStep: ipc::collision_free_stepsize against narrow phases
+// driven per candidate as ipc-toolkit's loop drives them -- batchccd's
+// per-query calls, and Tight Inclusion when the build has it
+// (cmake -DBATCHCCD_TIGHT_INCLUSION_DIR=<its sources>, bench/CMakeLists.txt).
 #include <benchmark/benchmark.h>
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <algorithm>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "batchccd/batchccd.hpp"
 #include "batchccd/lab.hpp"
 #include "broad_phase.hpp"
+#include "peers/tight_inclusion_peer.hpp"
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -222,22 +230,94 @@ void MethodOnDenseList(benchmark::State& state, const std::string& name, lab::Me
   }
 }
 
-// ipc-toolkit's collision-free step on a dense list, at min_distance =
-// separation mean edge lengths, on `threads` threads: the batch call
-// (ipc::collision_free_stepsize), against batchccd's per-query calls driven
-// as ipc-toolkit's compute_collision_free_stepsize drives its narrow phase
-// (a parallel loop over the candidates, each asked with tmax = the earliest
-// toi so far, an atomic minimum). Counter: the step, the same for both.
-void CollisionFreeStepOnDenseList(benchmark::State& state, const std::string& name, double separation,
-                                  bool batch, int threads) {
+// The earliest TOI of a dense list through mesh_ccd, conservative mode, no
+// separation, one thread: asked for alone (per_candidate_results and
+// hit_list false: the survivors are asked in a shrinking window, batch.hpp),
+// with a hit list (the same work without the window) and with
+// per-candidate results, in the same run. Counters: the earliest TOI (the
+// same for all three), the survivors asked and the hits found.
+struct EarliestToiCall {
+  const char* name;
+  bool per_candidate_results;
+  bool hit_list;
+};
+constexpr EarliestToiCall kEarliestToiCalls[] = {
+    {"earliest_toi_only", false, false}, {"hit_list", false, true}, {"per_candidate_results", true, false}};
+
+void EarliestToiOnDenseList(benchmark::State& state, const std::string& name, EarliestToiCall call) {
   const DenseList* list = dense_list(name);
   if (list == nullptr) {
     state.SkipWithError("../shared/data/scenes is absent");
     return;
   }
+  Options options;
+  options.threads = 1;
+  options.per_candidate_results = call.per_candidate_results;
+  options.hit_list = call.hit_list;
+  const MeshView view{list->scene.positions_t0, list->scene.positions_t1, list->scene.faces};
+  BatchResult result;
+  mesh_ccd(view, list->candidates, options, result);
+  for (auto _ : state) {
+    mesh_ccd(view, list->candidates, options, result);
+    // Read only: DoNotOptimize on a writable double may hand back garbage
+    // (Debian's Google Benchmark, g++ 12), and the TOI is reported below.
+    benchmark::DoNotOptimize(std::as_const(result.earliest_toi));
+  }
+  state.SetItemsProcessed(result.counters.candidates * state.iterations());
+  state.counters["earliest_toi"] = result.earliest_toi;
+  state.counters["solved"] = static_cast<double>(result.counters.solved);
+  state.counters["hits"] = static_cast<double>(result.counters.hits);
+}
+
+// Who answers the collision-free step: the batch call, or a narrow phase
+// driven per candidate as ipc-toolkit's loop drives it.
+enum class StepDriver { batch, per_query_loop, tight_inclusion_loop };
+
+const char* to_string(StepDriver driver) {
+  switch (driver) {
+    case StepDriver::batch: return "batch";
+    case StepDriver::per_query_loop: return "per_query_loop";
+    case StepDriver::tight_inclusion_loop: return "tight_inclusion_loop";
+  }
+  return "?";
+}
+
+// ipc-toolkit's collision-free step on a dense list, at min_distance =
+// separation mean edge lengths, on `threads` threads: the batch call
+// (ipc::collision_free_stepsize), against a narrow phase driven as
+// ipc-toolkit's compute_collision_free_stepsize drives it (a parallel loop
+// over the vertex-face and edge-edge candidates, each asked with tmax = the
+// earliest toi so far, an atomic minimum, with ipc-toolkit's rules):
+// batchccd's per-query calls (ipc.hpp), and Tight Inclusion
+// (peers/tight_inclusion_peer.hpp; rows skipped when the build has not got
+// it). Counter: the step.
+void CollisionFreeStepOnDenseList(benchmark::State& state, const std::string& name, double separation,
+                                  StepDriver driver, int threads) {
+  const DenseList* list = dense_list(name);
+  if (list == nullptr) {
+    state.SkipWithError("../shared/data/scenes is absent");
+    return;
+  }
+  if (driver == StepDriver::tight_inclusion_loop && !peers::tight_inclusion_available()) {
+    state.SkipWithError("configured without Tight Inclusion (-DBATCHCCD_TIGHT_INCLUSION_DIR)");
+    return;
+  }
   const MeshView view{list->scene.positions_t0, list->scene.positions_t1, list->scene.faces};
   const double min_distance = separation * list->mean_edge_length;
-  const auto per_query_loop = [&] {
+  const auto narrow_phase = [&](Kind kind, const Query& q, double& toi, double tmax) {
+    constexpr double tolerance = ipc::DEFAULT_CCD_TOLERANCE, rescaling = ipc::DEFAULT_CCD_CONSERVATIVE_RESCALING;
+    constexpr long iterations = ipc::DEFAULT_CCD_MAX_ITERATIONS;
+    if (driver == StepDriver::tight_inclusion_loop)
+      return peers::tight_inclusion_ipc_ccd(kind, q, std::sqrt(squared_distance(kind, q, 0)), toi, min_distance, tmax,
+                                            tolerance, iterations, rescaling);
+    const auto& p = q.points;
+    if (kind == Kind::vertex_face)
+      return ipc::point_triangle_ccd(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], toi, min_distance, tmax,
+                                     tolerance, iterations, rescaling);
+    return ipc::edge_edge_ccd(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], toi, min_distance, tmax, tolerance,
+                              iterations, rescaling);
+  };
+  const auto per_candidate_loop = [&] {
     std::atomic<double> earliest{1.0};
     const auto lower_to = [&](double toi) {
       double current = earliest.load();
@@ -250,17 +330,11 @@ void CollisionFreeStepOnDenseList(benchmark::State& state, const std::string& na
     arena.execute([&] {
       tbb::parallel_for(std::size_t{0}, vertex_face.size() + edge_edge.size(), [&](std::size_t i) {
         double toi = 1;
-        const double tmax = earliest.load();
-        const bool hit = i < vertex_face.size() ? [&] {
-          const Query q = vertex_face_query(view, vertex_face[i]);
-          const auto& p = q.points;
-          return ipc::point_triangle_ccd(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], toi, min_distance, tmax);
-        }()
-                                                : [&] {
-          const Query q = edge_edge_query(view, edge_edge[i - vertex_face.size()]);
-          const auto& p = q.points;
-          return ipc::edge_edge_ccd(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], toi, min_distance, tmax);
-        }();
+        const bool hit = i < vertex_face.size()
+                             ? narrow_phase(Kind::vertex_face, vertex_face_query(view, vertex_face[i]), toi,
+                                            earliest.load())
+                             : narrow_phase(Kind::edge_edge, edge_edge_query(view, edge_edge[i - vertex_face.size()]),
+                                            toi, earliest.load());
         if (hit) lower_to(toi);
       });
     });
@@ -268,10 +342,11 @@ void CollisionFreeStepOnDenseList(benchmark::State& state, const std::string& na
   };
   const auto run = [&] {
     const CandidateLists lists{.vertex_face = list->candidates.vertex_face, .edge_edge = list->candidates.edge_edge};
-    return batch ? ipc::collision_free_stepsize(view, lists, min_distance, ipc::DEFAULT_CCD_TOLERANCE,
-                                                ipc::DEFAULT_CCD_MAX_ITERATIONS,
-                                                ipc::DEFAULT_CCD_CONSERVATIVE_RESCALING, threads)
-                 : per_query_loop();
+    return driver == StepDriver::batch
+               ? ipc::collision_free_stepsize(view, lists, min_distance, ipc::DEFAULT_CCD_TOLERANCE,
+                                              ipc::DEFAULT_CCD_MAX_ITERATIONS,
+                                              ipc::DEFAULT_CCD_CONSERVATIVE_RESCALING, threads)
+               : per_candidate_loop();
   };
   double step = run();
   for (auto _ : state) {
@@ -319,17 +394,24 @@ const bool registered = [] {
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime();
   for (const char* name : kSceneNames)
+    for (const EarliestToiCall& call : kEarliestToiCalls)
+      benchmark::RegisterBenchmark(("EarliestToi/" + std::string(name) + "/" + call.name).c_str(),
+                                   EarliestToiOnDenseList, std::string(name), call)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+  for (const char* name : kSceneNames)
     for (const double separation : {0.0, 1e-3})
       for (const int threads : {1, 2})
-        for (const bool batch : {true, false})
+        for (const StepDriver driver :
+             {StepDriver::batch, StepDriver::per_query_loop, StepDriver::tight_inclusion_loop})
           benchmark::RegisterBenchmark(("CollisionFreeStep/" + std::string(name) + "/min_distance_" +
-                                        std::to_string(separation).substr(0, 5) +
-                                        (batch ? "/batch" : "/per_query_loop") + "/threads_" + std::to_string(threads))
+                                        std::to_string(separation).substr(0, 5) + "/" + to_string(driver) +
+                                        "/threads_" + std::to_string(threads))
                                            .c_str(),
-                                       CollisionFreeStepOnDenseList, std::string(name), separation, batch, threads)
+                                       CollisionFreeStepOnDenseList, std::string(name), separation, driver, threads)
               ->Unit(benchmark::kMillisecond)
               ->UseRealTime()
-              ->Iterations(batch ? 3 : 1);
+              ->Iterations(driver == StepDriver::batch ? 3 : 1);
   return true;
 }();
 

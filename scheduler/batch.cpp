@@ -23,6 +23,7 @@
 #include "reference/reference.hpp"
 #include "reference/scaled_query.hpp"
 #include "separation_check.hpp"
+#include "shrinking_window.hpp"
 #include "simd/filter.hpp"
 #include "simd/sources.hpp"
 
@@ -35,8 +36,7 @@ struct Partial {
   std::vector<Hit> hits;  // Options::hit_list, in the order found
 };
 
-// Survivors a worker solves at once: their costs vary by orders of
-// magnitude and cluster where the meshes touch, so small pieces balance.
+// Survivors a worker solves at once (for_each_survivor).
 constexpr std::size_t kSolverGrain = 8;
 
 void tally(const reference::Evaluation& e, Partial& partial) {
@@ -179,20 +179,47 @@ void filter_source(Kind kind, const Source& source, std::size_t count, simd::Fil
   }
 }
 
+// Only the earliest TOI is asked for (no per-candidate results, no hit
+// list, located TOIs): the survivors can be asked in a shrinking window.
+bool earliest_toi_only(const Options& options) {
+  return !options.per_candidate_results && !options.hit_list && options.need_toi;
+}
+
+// Survivors in small pieces, in parallel: their costs vary by orders of
+// magnitude and cluster where the meshes touch, so small pieces balance.
+template <class Evaluate>
+void for_each_survivor(const std::vector<std::size_t>& survivors, Evaluate evaluate) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, survivors.size(), kSolverGrain),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t k = range.begin(); k < range.end(); ++k) evaluate(survivors[k]);
+                    },
+                    tbb::simple_partitioner());
+}
+
 // Results for candidates [0, count) of a source, at results[offset + i]
 // when per-candidate results are asked for: the scalar path over
 // `survivors` (nullptr: every candidate, the unfiltered baseline), defaults
-// for the rest.
+// for the rest. With a `window` (only the earliest TOI asked for), each
+// survivor is asked over the window (window_tmax), and none once a contact
+// at 0 is known.
 template <class Source>
 void solve_source(const Source& source, std::size_t count, const std::vector<std::size_t>* survivors,
                   const Options& options, const lab::Settings& lab, const Separations& separations,
-                  std::size_t offset, BatchResult& batch, Partials& partials) {
+                  std::size_t offset, BatchResult& batch, Partials& partials, ShrinkingWindow* window = nullptr) {
   const bool filtered = survivors != nullptr;
   const auto evaluate = [&](std::size_t i, Partial& partial) {
     Options own = options;  // a candidate's own separation
     own.min_distance = separations.at(i);
-    const reference::Evaluation e =
-        reference::evaluate_query(source.kind, simd::query_at(source, i), own, lab, filtered);
+    const Query query = simd::query_at(source, i);
+    if (window != nullptr) {
+      if (!(window->earliest() > 0)) {  // closed: only bad input is still counted
+        partial.counters.invalid += !reference::all_finite(query);
+        return;
+      }
+      own.tmax = window_tmax(window->earliest(), options);
+    }
+    const reference::Evaluation e = reference::evaluate_query(source.kind, query, own, lab, filtered);
+    if (window != nullptr && e.result.hit) window->lower_to(e.result.toi);
     tally(e, partial);
     if (options.per_candidate_results) batch.results[offset + i] = e.result;
     if (options.hit_list && e.result.hit) partial.hits.push_back({offset + i, e.result.toi, e.result.status});
@@ -216,13 +243,7 @@ void solve_source(const Source& source, std::size_t count, const std::vector<std
                         std::fill(first + static_cast<std::ptrdiff_t>(range.begin()),
                                   first + static_cast<std::ptrdiff_t>(range.end()), QueryResult{});
                       });
-  // Survivors in small pieces: their costs vary by orders of magnitude.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, survivors->size(), kSolverGrain),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      Partial& partial = partials.local();
-                      for (std::size_t k = range.begin(); k < range.end(); ++k) evaluate((*survivors)[k], partial);
-                    },
-                    tbb::simple_partitioner());
+  for_each_survivor(*survivors, [&](std::size_t i) { evaluate(i, partials.local()); });
 }
 
 void combine(Partials& partials, BatchResult& batch) {
@@ -315,8 +336,9 @@ void lab::batch_ccd(Kind kind, std::span<const Query> queries, std::span<const d
         filter_source(kind, source, queries.size(), kernels.raw, options, lab, separations, storage, partials,
                       survivors);
       reset(out, queries.size(), options);
+      ShrinkingWindow window(options.tmax);
       solve_source(source, queries.size(), filtered ? &survivors : nullptr, options, lab, separations, 0, out,
-                   partials);
+                   partials, filtered && earliest_toi_only(options) ? &window : nullptr);
       combine(partials, out);
     });
   });
@@ -445,13 +467,16 @@ void lab::mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const
     const auto& [vertex_face, edge_edge, vertex_edge, vertex_vertex] = lists.counts;
     reset(out, vertex_face + edge_edge + vertex_edge + vertex_vertex, options);
     const auto solved = [&](int list) { return lists.filtered ? &lists.survivors[list] : nullptr; };
-    solve_source(lists.vertex_face, vertex_face, solved(0), options, lab, lists.separations[0], 0, out, partials);
+    ShrinkingWindow shared(options.tmax);  // one window over the four lists
+    ShrinkingWindow* window = lists.filtered && earliest_toi_only(options) ? &shared : nullptr;
+    solve_source(lists.vertex_face, vertex_face, solved(0), options, lab, lists.separations[0], 0, out, partials,
+                 window);
     solve_source(lists.edge_edge, edge_edge, solved(1), options, lab, lists.separations[1], vertex_face, out,
-                 partials);
+                 partials, window);
     solve_source(lists.vertex_edge, vertex_edge, solved(2), options, lab, lists.separations[2],
-                 vertex_face + edge_edge, out, partials);
+                 vertex_face + edge_edge, out, partials, window);
     solve_source(lists.vertex_vertex, vertex_vertex, solved(3), options, lab, lists.separations[3],
-                 vertex_face + edge_edge + vertex_edge, out, partials);
+                 vertex_face + edge_edge + vertex_edge, out, partials, window);
     combine(partials, out);
   });
   sort_hits(out);
@@ -478,17 +503,6 @@ BatchResult mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, con
   return lab::mesh_ccd(mesh, candidates, options, {});
 }
 
-namespace {
-
-// x = min(x, value), atomically.
-void lower_to(std::atomic<double>& x, double value) {
-  double current = x.load(std::memory_order_relaxed);
-  while (value < current && !x.compare_exchange_weak(current, value, std::memory_order_relaxed)) {
-  }
-}
-
-}  // namespace
-
 double ipc::collision_free_stepsize(const MeshView& mesh, const CandidateLists& candidates, double min_distance,
                                     double tolerance, long max_iterations, double conservative_rescaling,
                                     int threads) {
@@ -501,27 +515,22 @@ double ipc::collision_free_stepsize(const MeshView& mesh, const CandidateLists& 
   lanes.min_distance = min_distance + rules::kLargestRescalingSeparation + tolerance;
   lanes.threads = threads;
   lanes.per_candidate_results = false;
-  std::atomic<double> earliest{1.0};
+  ShrinkingWindow window(1.0);
   filter_mesh(mesh, candidates, {}, lanes, {}, [&](FilteredMesh& lists, Partials&) {
     const auto decide_survivors = [&](const auto& source, Kind kind, const std::vector<std::size_t>& survivors) {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, survivors.size(), kSolverGrain),
-                        [&](const tbb::blocked_range<std::size_t>& range) {
-                          for (std::size_t k = range.begin(); k < range.end(); ++k) {
-                            double toi = 1;
-                            const double window = earliest.load(std::memory_order_relaxed);
-                            if (rules::decide(kind, simd::query_at(source, survivors[k]), toi, min_distance, window,
-                                              tolerance, max_iterations, conservative_rescaling))
-                              lower_to(earliest, toi);
-                          }
-                        },
-                        tbb::simple_partitioner());
+      for_each_survivor(survivors, [&](std::size_t i) {
+        const double tmax = ipc_window_tmax(window.earliest(), conservative_rescaling);
+        if (double toi = 1; rules::decide(kind, simd::query_at(source, i), toi, min_distance, tmax, tolerance,
+                                          max_iterations, conservative_rescaling))
+          window.lower_to(toi);
+      });
     };
     decide_survivors(lists.vertex_face, Kind::vertex_face, lists.survivors[0]);
     decide_survivors(lists.edge_edge, Kind::edge_edge, lists.survivors[1]);
     decide_survivors(lists.vertex_edge, Kind::vertex_edge, lists.survivors[2]);
     decide_survivors(lists.vertex_vertex, Kind::vertex_vertex, lists.survivors[3]);
   });
-  return earliest.load();
+  return window.earliest();
 }
 
 }  // namespace batchccd

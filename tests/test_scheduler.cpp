@@ -123,8 +123,9 @@ TEST(Scheduler, EarliestToiOnlyCallsWriteNoResults) {
   const BatchResult earliest = mesh_ccd(mesh.view(), mesh.candidates, options);
   EXPECT_TRUE(earliest.results.empty());
   EXPECT_EQ(earliest.earliest_toi, full.earliest_toi);
-  EXPECT_EQ(earliest.counters.hits, full.counters.hits);
-  EXPECT_GT(full.counters.hits, 0);  // the cloth scene's step holds contacts
+  // Its survivors are asked in a shrinking window (batch.hpp): fewer hits found.
+  EXPECT_LE(earliest.counters.hits, full.counters.hits);
+  EXPECT_GT(earliest.counters.hits, 0);  // the cloth scene's step holds contacts
 }
 
 // The hit list is the sparse form of the per-candidate results, in candidate

@@ -19,8 +19,14 @@
 // speed. A 2D mesh (positions n x 2) is read as z = 0, as ipc-toolkit
 // reads 2D meshes.
 //
-// The result does not depend on the thread count (a minimum of per-candidate
-// answers that do not depend on the window they were asked in).
+// Each survivor is asked in a shrinking window: tmax just past the earliest
+// step found so far, divided by the rescaling (a retried step is rescaled
+// below its contact) plus twice the TOI tolerance (a TOI lies up to one
+// before its contact). The result does not depend on the thread count: a
+// survivor whose step counts (below the earliest so far) gets the step it
+// gets over [0, 1] (tests/test_shrinking_window.cpp), so the call returns
+// the minimum of the per-candidate answers whichever order threads find
+// them in (docs/design.md §12).
 //
 // Bad input: std::invalid_argument naming the argument, as ipc.hpp's calls
 // and mesh_ccd (batch.hpp) refuse it, before anything is evaluated. A NaN
