@@ -109,7 +109,11 @@ def test_the_class_answers_as_the_functions_given_its_attributes(settings):
     narrow_phase = ipc.NarrowPhase(**settings)
     by_method = answers(lambda name: getattr(narrow_phase, name))
     assert by_method == answers(lambda name: getattr(ipc, name), **settings)
-    if settings:  # each setting changes some answer here, so one left unforwarded shows
+    # Each setting but the tolerance changes some answer here, so one left
+    # unforwarded shows. The tolerance only permits false positives, and
+    # near misses at the separations these calls ask for are proven misses
+    # whatever it is.
+    if settings and set(settings) != {"tolerance"}:
         assert by_method != answers(lambda name: getattr(ipc.NarrowPhase(), name))
 
 

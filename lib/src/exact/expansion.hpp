@@ -39,6 +39,46 @@ inline void two_product(double a, double b, double& x, double& error) {
   error = ((a_high * b_high - x) + a_high * b_low + a_low * b_high) + a_low * b_low;
 }
 
+// e + f into `out` (anything with push(double)): both merged by magnitude,
+// then summed from the smallest up (Shewchuk's Fast-Expansion-Sum with zero
+// elimination; two-sum throughout, which needs no ordering of its
+// operands). m + n terms at most.
+template <class Out>
+void add_terms(const double* e, std::size_t m, const double* f, std::size_t n, Out& out) {
+  if (m + n == 0) return;
+  std::size_t i = 0, j = 0;
+  const auto next_smallest = [&] {
+    const bool take_e = j == n || (i < m && std::fabs(e[i]) <= std::fabs(f[j]));
+    return take_e ? e[i++] : f[j++];
+  };
+  double carry = next_smallest();
+  while (i < m || j < n) {
+    double error;
+    two_sum(carry, next_smallest(), carry, error);
+    out.push(error);
+  }
+  out.push(carry);
+}
+
+// e * b into `out` (Shewchuk's Scale-Expansion with zero elimination): 2 n
+// terms at most.
+template <class Out>
+void scale_terms(const double* e, std::size_t n, double b, Out& out) {
+  if (n == 0 || b == 0) return;
+  double carry, error;
+  two_product(e[0], b, carry, error);
+  out.push(error);
+  for (std::size_t i = 1; i < n; ++i) {
+    double product, product_error, sum, sum_error;
+    two_product(e[i], b, product, product_error);
+    two_sum(carry, product_error, sum, sum_error);
+    out.push(sum_error);
+    two_sum(product, sum, carry, error);
+    out.push(error);
+  }
+  out.push(carry);
+}
+
 template <std::size_t Capacity>
 struct Expansion {
   std::array<double, Capacity> terms;  // the first `size` hold the value
@@ -87,25 +127,11 @@ Expansion<N + 1> grown(const Expansion<N>& e, double b) {
   return result;
 }
 
-// e + f: both merged by magnitude, then summed from the smallest up
-// (Shewchuk's Fast-Expansion-Sum with zero elimination; two-sum throughout,
-// which needs no ordering of its operands).
+// e + f (add_terms).
 template <std::size_t M, std::size_t N>
 Expansion<M + N> operator+(const Expansion<M>& e, const Expansion<N>& f) {
   Expansion<M + N> result;
-  if (e.size + f.size == 0) return result;
-  std::size_t i = 0, j = 0;
-  const auto next_smallest = [&] {
-    const bool take_e = j == f.size || (i < e.size && std::fabs(e.terms[i]) <= std::fabs(f.terms[j]));
-    return take_e ? e.terms[i++] : f.terms[j++];
-  };
-  double carry = next_smallest();
-  while (i < e.size || j < f.size) {
-    double error;
-    two_sum(carry, next_smallest(), carry, error);
-    result.push(error);
-  }
-  result.push(carry);
+  add_terms(e.terms.data(), e.size, f.terms.data(), f.size, result);
   return result;
 }
 
@@ -120,23 +146,11 @@ Expansion<M + N> operator-(const Expansion<M>& e, const Expansion<N>& f) {
   return e + (-f);
 }
 
-// e * b (Shewchuk's Scale-Expansion with zero elimination).
+// e * b (scale_terms).
 template <std::size_t N>
 Expansion<2 * N> scaled(const Expansion<N>& e, double b) {
   Expansion<2 * N> result;
-  if (e.size == 0 || b == 0) return result;
-  double carry, error;
-  two_product(e.terms[0], b, carry, error);
-  result.push(error);
-  for (std::size_t i = 1; i < e.size; ++i) {
-    double product, product_error, sum, sum_error;
-    two_product(e.terms[i], b, product, product_error);
-    two_sum(carry, product_error, sum, sum_error);
-    result.push(sum_error);
-    two_sum(product, sum, carry, error);
-    result.push(error);
-  }
-  result.push(carry);
+  scale_terms(e.terms.data(), e.size, b, result);
   return result;
 }
 
@@ -212,20 +226,7 @@ class BoundedExpansion {
 
   friend BoundedExpansion operator+(const BoundedExpansion& e, const BoundedExpansion& f) {
     Scratch sum;
-    std::size_t i = 0, j = 0;
-    const auto next_smallest = [&] {
-      const bool take_e = j == f.size_ || (i < e.size_ && std::fabs(e.terms_[i]) <= std::fabs(f.terms_[j]));
-      return take_e ? e.terms_[i++] : f.terms_[j++];
-    };
-    if (e.size_ + f.size_ > 0) {
-      double carry = next_smallest();
-      while (i < e.size_ || j < f.size_) {
-        double error;
-        two_sum(carry, next_smallest(), carry, error);
-        sum.push(error);
-      }
-      sum.push(carry);
-    }
+    add_terms(e.terms_.data(), e.size_, f.terms_.data(), f.size_, sum);
     return compressed(sum);
   }
   friend BoundedExpansion operator-(BoundedExpansion e) {
@@ -236,20 +237,7 @@ class BoundedExpansion {
   // e * b for a double b.
   friend BoundedExpansion operator*(const BoundedExpansion& e, double b) {
     Scratch product;
-    if (e.size_ > 0 && b != 0) {
-      double carry, error;
-      two_product(e.terms_[0], b, carry, error);
-      product.push(error);
-      for (std::size_t i = 1; i < e.size_; ++i) {
-        double term, term_error, sum, sum_error;
-        two_product(e.terms_[i], b, term, term_error);
-        two_sum(carry, term_error, sum, sum_error);
-        product.push(sum_error);
-        two_sum(term, sum, carry, error);
-        product.push(error);
-      }
-      product.push(carry);
-    }
+    scale_terms(e.terms_.data(), e.size_, b, product);
     return compressed(product);
   }
   friend BoundedExpansion operator*(const BoundedExpansion& e, const BoundedExpansion& f) {
