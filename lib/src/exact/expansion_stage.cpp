@@ -555,26 +555,27 @@ std::optional<double> first_root(Kind kind, const Query& query, double low, doub
   return std::nullopt;
 }
 
-}  // namespace
-
-std::optional<ExactOutcome> solve_with_expansions(Kind kind, const Query& query, bool need_toi, double tmax) {
+// `answer` on the query normalized, or nullopt where the expansions cannot
+// hold it (a coordinate spread, a result longer than their capacity).
+template <class Answer>
+auto on_normalized(const Query& query, Answer answer) -> decltype(answer(query)) {
   const std::optional<Query> scaled = normalized(query, kCoordinateFloor);
   if (!scaled) return std::nullopt;
   try {
-    return solve(kind, *scaled, need_toi, tmax);
+    return answer(*scaled);
   } catch (const BoundedExpansion::TooLong&) {
     return std::nullopt;
   }
 }
 
+}  // namespace
+
+std::optional<ExactOutcome> solve_with_expansions(Kind kind, const Query& query, bool need_toi, double tmax) {
+  return on_normalized(query, [&](const Query& scaled) { return solve(kind, scaled, need_toi, tmax); });
+}
+
 std::optional<double> first_root_with_expansions(Kind kind, const Query& query, double low, double high) {
-  const std::optional<Query> scaled = normalized(query, kCoordinateFloor);
-  if (!scaled) return std::nullopt;
-  try {
-    return first_root(kind, *scaled, low, high);
-  } catch (const BoundedExpansion::TooLong&) {
-    return std::nullopt;
-  }
+  return on_normalized(query, [&](const Query& scaled) { return first_root(kind, scaled, low, high); });
 }
 
 }  // namespace batchccd::exact
