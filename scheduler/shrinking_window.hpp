@@ -34,7 +34,7 @@ class ShrinkingWindow {
 // (tests/test_shrinking_window.cpp), so the minimum does not depend on the
 // order in which threads find contacts.
 inline double window_tmax(double earliest, const Options& options) {
-  return std::min(options.tmax, earliest + std::max(options.toi_tolerance, 0x1p-45));
+  return std::min(options.tmax, earliest + std::max(0x1p-45, options.toi_tolerance));
 }
 
 // The same for ipc-toolkit's rules (ipc::collision_free_stepsize), whose

@@ -90,17 +90,17 @@ TEST(Tolerance, ZeroNegativeOrNanSendsNearContactsToTheExactStage) {
 }
 
 // A clean crossing at t = 1/3: the TOI at most toi_tolerance before it,
-// never after; values below 2^-45 (zero and negative too) act as 2^-45.
+// never after; values below 2^-45 (zero, negative and NaN too) act as 2^-45.
 TEST(ToiTolerance, BoundsHowEarlyTheToiIsDownToItsFloor) {
   const Query crossing = vertex_falling_at(0.25, 0.25);
   const Rational root(1, 3);
-  for (const double toi_tolerance : {1e-2, 1e-4, 1e-7, 1e-10, 0x1p-45, 0x1p-60, 0.0, -1.0}) {
+  for (const double toi_tolerance : {1e-2, 1e-4, 1e-7, 1e-10, 0x1p-45, 0x1p-60, 0.0, -1.0, kNaN}) {
     Options options;
     options.toi_tolerance = toi_tolerance;
     const QueryResult result = query_ccd(Kind::vertex_face, crossing, options);
     ASSERT_TRUE(result.hit) << toi_tolerance;
     EXPECT_LE(Rational(result.toi), root) << toi_tolerance;
-    EXPECT_LE(root - Rational(result.toi), Rational(std::max(toi_tolerance, 0x1p-45))) << toi_tolerance;
+    EXPECT_LE(root - Rational(result.toi), Rational(std::max(0x1p-45, toi_tolerance))) << toi_tolerance;
   }
 }
 

@@ -119,7 +119,7 @@ struct Options {
   double tolerance = 1e-9;
   // Conservative mode: width of the time interval at which the first
   // contact is located (the reported TOI lies at most this much before it).
-  // A fraction of the step [0, 1]; values below 2^-45 act as 2^-45.
+  // A fraction of the step [0, 1]; values below 2^-45 (and NaN) act as 2^-45.
   double toi_tolerance = 1e-7;
   // With min_distance > 0 (no exact stage there): boxes the search examines
   // on one query before giving up; the query is then reported as a hit at

@@ -79,7 +79,8 @@ class InclusionSolver {
  public:
   InclusionSolver(Kind kind, const ScaledQuery& query, const SolverSettings& settings)
       : kind_(kind), settings_(settings) {
-    settings_.toi_tolerance = std::max(settings_.toi_tolerance, kSmallestWidth);
+    // The floor first: std::max keeps it against a NaN as well.
+    settings_.toi_tolerance = std::max(kSmallestWidth, settings_.toi_tolerance);
     for (int i = 0; i < 3; ++i)
       for (int tau = 0; tau < 2; ++tau) {
         position_[i][tau] = as_vector(query.relative[i][tau]);

@@ -83,7 +83,7 @@ bool decide_in_plane(Kind kind, const Query& query, const ScaledQuery& scaled, c
   const std::optional<int> axis = exact::exact_plane_axis(query);
   if (!axis) return false;
   const double toi_width =
-      decider == Decider::exact ? kExactToiWidth : std::max(options.toi_tolerance, 0x1p-45);
+      decider == Decider::exact ? kExactToiWidth : std::max(0x1p-45, options.toi_tolerance);
   const PlanarOutcome outcome =
       solve_planar(planar_shape(kind, query), scaled, *axis, options.tmax, toi_width);
   if (!outcome.certain) {
@@ -169,7 +169,7 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, const
   // The width a certain contact's TOI is to be located to: 2^-40 in exact
   // mode, toi_tolerance (at least 2^-45, as the solver takes it) in
   // conservative mode.
-  const double toi_width = exact ? kExactToiWidth : std::max(options.toi_tolerance, 0x1p-45);
+  const double toi_width = exact ? kExactToiWidth : std::max(0x1p-45, options.toi_tolerance);
   if ((exact || conservative) && outcome.certain && outcome.hit && options.need_toi &&
       outcome.toi_upper - outcome.toi > toi_width) {
     // A certain contact whose cubic's signs got too close to call before
