@@ -95,7 +95,8 @@ class Partials {
 // What a call keeps for the next one on the same host thread, so that a
 // frame loop allocates nothing once these have grown: the lanes' survivors
 // batch by batch, each list's survivors, the workers' partial results, a
-// mesh's packed rows and faces, and its point candidates as edge pairs.
+// mesh's packed rows and faces, its point candidates as edge pairs, and a
+// 2D call's queries lifted.
 struct CallStorage {
   std::vector<std::uint32_t> kept_in_batch;  // the lanes' survivors, batch b's from b * kFilterBatch
   std::vector<std::size_t> kept_counts;      // how many each batch kept
@@ -104,6 +105,7 @@ struct CallStorage {
   simd::PackedPositions packed;
   simd::PackedFaces faces;
   std::vector<std::array<int, 4>> point_pairs;
+  std::vector<Query> lifted_queries;  // a 2D call's queries in the plane z = 0
   bool in_use = false;
 };
 
@@ -319,30 +321,57 @@ Separations separations_of(std::span<const double> each, std::size_t count, cons
   return {0, each.data()};
 }
 
+namespace {
+
+// A raw-query call in the calling thread's storage, the options checked.
+void batch_in(Kind kind, std::span<const Query> queries, const Separations& separations, const Options& options,
+              const lab::Settings& lab, CallStorage& storage, BatchResult& out) {
+  const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
+  const bool filtered = decider_of(options, lab) != Decider::cubic;  // the baseline runs unfiltered
+  const simd::RawQueries source =
+      simd::raw_queries(reference::evaluated_kind(kind), queries.data(), queries.size());
+  in_arena(options.threads, [&] {
+    Partials partials(storage.partials);
+    std::vector<std::size_t>& survivors = storage.survivors[0];
+    if (filtered)
+      filter_source(kind, source, queries.size(), kernels.raw, options, lab, separations, storage, partials,
+                    survivors);
+    reset(out, queries.size(), options);
+    ShrinkingWindow window(options.tmax);
+    solve_source(source, queries.size(), filtered ? &survivors : nullptr, options, lab, separations, 0, out,
+                 partials, filtered && earliest_toi_only(options) ? &window : nullptr);
+    combine(partials, out);
+  });
+  sort_hits(out);
+}
+
+}  // namespace
+
 void lab::batch_ccd(Kind kind, std::span<const Query> queries, std::span<const double> min_distances,
                     const Options& options, const Settings& lab, BatchResult& out) {
   validate(options, lab);
   const Separations separations =
       separations_of(min_distances, queries.size(), batchccd::to_string(kind), options, lab);
-  const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
-  const bool filtered = decider_of(options, lab) != Decider::cubic;  // the baseline runs unfiltered
-  const simd::RawQueries source =
-      simd::raw_queries(reference::evaluated_kind(kind), queries.data(), queries.size());
+  with_call_storage([&](CallStorage& storage) { batch_in(kind, queries, separations, options, lab, storage, out); });
+}
+
+void lab::batch_ccd(Kind kind, std::span<const Query2D> queries, std::span<const double> min_distances,
+                    const Options& options, const Settings& lab, BatchResult& out) {
+  validate(options, lab);
+  const Separations separations =
+      separations_of(min_distances, queries.size(), batchccd::to_string(kind), options, lab);
+  simd::filter_kernels(options.isa);  // refuses an unavailable ISA before any work
   with_call_storage([&](CallStorage& storage) {
+    std::vector<Query>& in_plane = storage.lifted_queries;
+    in_plane.resize(queries.size());
     in_arena(options.threads, [&] {
-      Partials partials(storage.partials);
-      std::vector<std::size_t>& survivors = storage.survivors[0];
-      if (filtered)
-        filter_source(kind, source, queries.size(), kernels.raw, options, lab, separations, storage, partials,
-                      survivors);
-      reset(out, queries.size(), options);
-      ShrinkingWindow window(options.tmax);
-      solve_source(source, queries.size(), filtered ? &survivors : nullptr, options, lab, separations, 0, out,
-                   partials, filtered && earliest_toi_only(options) ? &window : nullptr);
-      combine(partials, out);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, queries.size(), simd::kFilterBatch),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          for (std::size_t i = range.begin(); i < range.end(); ++i) in_plane[i] = lifted(queries[i]);
+                        });
     });
+    batch_in(kind, in_plane, separations, options, lab, storage, out);
   });
-  sort_hits(out);
 }
 
 BatchResult lab::batch_ccd(Kind kind, std::span<const Query> queries, const Options& options,
@@ -363,6 +392,21 @@ void batch_ccd(Kind kind, std::span<const Query> queries, const Options& options
 
 BatchResult batch_ccd(Kind kind, std::span<const Query> queries, const Options& options) {
   return lab::batch_ccd(kind, queries, options, {});
+}
+
+void batch_ccd(Kind kind, std::span<const Query2D> queries, std::span<const double> min_distances,
+               const Options& options, BatchResult& out) {
+  lab::batch_ccd(kind, queries, min_distances, options, {}, out);
+}
+
+void batch_ccd(Kind kind, std::span<const Query2D> queries, const Options& options, BatchResult& out) {
+  lab::batch_ccd(kind, queries, {}, options, {}, out);
+}
+
+BatchResult batch_ccd(Kind kind, std::span<const Query2D> queries, const Options& options) {
+  BatchResult batch;
+  batch_ccd(kind, queries, options, batch);
+  return batch;
 }
 
 namespace {

@@ -256,6 +256,31 @@ TEST(NoAllocation, RawCallsOfEveryKindAndOption) {
   }
 }
 
+// 2D queries are lifted into storage the thread keeps: none after the first call.
+TEST(NoAllocation, RawCallsIn2D) {
+  for (const Kind kind : {Kind::vertex_face, Kind::edge_edge, Kind::vertex_edge, Kind::vertex_vertex}) {
+    std::vector<Query2D> queries;
+    for (const Query& query : frame().queries(kind)) {
+      Query2D flat;
+      for (int k = 0; k < 8; ++k) flat.points[k] = query.points[k].head<2>();
+      queries.push_back(flat);
+    }
+    const std::vector<double>& own = frame().separations[static_cast<int>(kind)];
+    for (const auto& [name, options] : option_sets())
+      for (bool each : {false, true}) {
+        expect_no_allocation_after_warm_up(
+            [&](int threads, BatchResult& out) {
+              Options with = options;
+              with.threads = threads;
+              batch_ccd(kind, std::span<const Query2D>(queries),
+                        each ? std::span<const double>(own) : std::span<const double>{}, with, out);
+            },
+            options.threads,
+            std::string("batch_ccd 2D ") + to_string(kind) + ", " + name + (each ? ", a separation per query" : ""));
+      }
+  }
+}
+
 TEST(NoAllocation, CollisionFreeStepsize) {
   const double min_distance = 1e-3 * scenes::mean_edge_length(frame().view());
   for (int threads : {1, 2})

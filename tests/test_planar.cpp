@@ -399,6 +399,94 @@ TEST(Mesh2D, AgreesWithExactArithmetic) {
   }
 }
 
+// Raw 2D queries (Query2D) mean the queries lifted to z = 0: batch_ccd on
+// them gives the lifted batch's answers in every kind, mode and option, and
+// those are exact arithmetic's at separation 0.
+std::vector<Query2D> random_queries_2d(Kind kind, unsigned seed, int count) {
+  PlanarGenerator generator(seed);
+  std::vector<Query2D> queries;
+  for (int i = 0; i < count; ++i) {
+    const Query query = generator.query(kind, kFloor);
+    Query2D in_plane;
+    for (int k = 0; k < 8; ++k) in_plane.points[k] = query.points[k].head<2>();
+    queries.push_back(in_plane);
+  }
+  return queries;
+}
+
+TEST(Queries2D, MeanTheQueriesLiftedToThePlaneZ0) {
+  for (Kind kind : {Kind::vertex_face, Kind::edge_edge, Kind::vertex_edge, Kind::vertex_vertex}) {
+    const std::vector<Query2D> queries = random_queries_2d(kind, 31 + static_cast<unsigned>(kind), 120);
+    std::vector<Query> spatial;
+    for (const Query2D& query : queries) {
+      spatial.push_back(lifted(query));
+      ASSERT_EQ(spatial.back().points[3].z(), 0.0);
+      ASSERT_EQ(spatial.back().points[6].head<2>(), query.points[6]);
+    }
+    std::vector<double> separations(queries.size());
+    for (std::size_t i = 0; i < separations.size(); ++i) separations[i] = 0.01 * static_cast<double>(i % 4);
+    int contacts = 0;
+    for (Mode mode : {Mode::conservative, Mode::exact})
+      for (double min_distance : {0.0, 0.02})
+        for (double tmax : {1.0, 0.5}) {
+          SCOPED_TRACE(::testing::Message() << to_string(kind) << " " << to_string(mode) << " min_distance "
+                                            << min_distance << " tmax " << tmax);
+          Options options = options_for(mode, tmax);
+          options.min_distance = min_distance;
+          options.hit_list = true;
+          const BatchResult three = batch_ccd(kind, spatial, options);
+          contacts += static_cast<int>(three.counters.hits);
+          expect_same_results(batch_ccd(kind, queries, options), three);
+          BatchResult each_2d, each_3d;
+          batch_ccd(kind, std::span<const Query2D>(queries), separations, options, each_2d);
+          batch_ccd(kind, std::span<const Query>(spatial), separations, options, each_3d);
+          expect_same_results(each_2d, each_3d);
+          options.threads = 2;
+          options.isa = Isa::scalar;
+          expect_same_results(batch_ccd(kind, queries, options), three);
+          if (min_distance == 0 && tmax == 1)
+            for (std::size_t i = 0; i < queries.size(); i += 7)
+              expect_agrees(three.results[i], truth(kind, spatial[i]), mode, spatial[i]);
+        }
+    EXPECT_GT(contacts, kind == Kind::vertex_vertex ? 2 : 100) << to_string(kind);
+  }
+}
+
+TEST(Queries2D, MakeQueryAndBadInput) {
+  const std::array<Vec2, 3> start{Vec2(0, 1), Vec2(-1, 0), Vec2(1, 0)}, end{Vec2(0, -1), Vec2(-1, 0), Vec2(1, 0)};
+  const Query2D crossing = make_query(Kind::vertex_edge, start, end);
+  EXPECT_EQ(crossing.points[1], start[0]);  // the point as a zero-length edge
+  EXPECT_EQ(crossing.points[7], end[2]);
+  EXPECT_THROW(make_query(Kind::vertex_face, start, end), std::invalid_argument);
+  const QueryResult alone = query_ccd(Kind::vertex_edge, lifted(crossing));
+  EXPECT_TRUE(alone.hit);
+  EXPECT_NEAR(alone.toi, 0.5, 1e-6);
+
+  // A NaN makes that query invalid_input and leaves the others' answers.
+  std::vector<Query2D> queries(3, crossing);
+  queries[1].points[4].y() = std::nan("");
+  Options options;
+  options.per_candidate_results = true;
+  BatchResult out = batch_ccd(Kind::vertex_edge, queries, options);
+  ASSERT_EQ(out.results.size(), 3u);
+  EXPECT_EQ(out.results[1].status, Status::invalid_input);
+  EXPECT_EQ(out.results[0].toi, alone.toi);
+  EXPECT_EQ(out.results[2].toi, alone.toi);
+  EXPECT_EQ(out.counters.invalid, 1);
+
+  // What the call refuses leaves `out` as it was.
+  const std::vector<double> too_few(2, 0.0), negative{0.0, -1.0, 0.0};
+  EXPECT_THROW(batch_ccd(Kind::vertex_edge, std::span<const Query2D>(queries), too_few, options, out),
+               std::invalid_argument);
+  EXPECT_THROW(batch_ccd(Kind::vertex_edge, std::span<const Query2D>(queries), negative, options, out),
+               std::invalid_argument);
+  Options bad = options;
+  bad.tmax = 2;
+  EXPECT_THROW(batch_ccd(Kind::vertex_edge, std::span<const Query2D>(queries), bad, out), std::invalid_argument);
+  EXPECT_EQ(out.results[1].status, Status::invalid_input);
+  EXPECT_EQ(out.counters.invalid, 1);
+}
+
 // The shared data's coplanar-motion queries (planar/), in every mode, and the
 // lanes against the scalar path: identical answers.
 TEST(PlanarSharedData, ZeroWrongDecisionsAndLanesMatchScalar) {

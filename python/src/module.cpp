@@ -291,32 +291,50 @@ std::span<const double> double_span(const py::array& array) {
 }
 
 // Queries N x 8 x 3 or N x 24 (Query's layout), float64 C-ordered in place.
-std::span<const Query> query_span(py::handle object, const char* name, py::array& keep) {
+// Queries, N x 8 x 3 (or N x 24) or, of a 2D scene, N x 8 x 2 (or N x 16):
+// the rows in place when they are C-ordered float64, else a copy in `keep`.
+struct QueryRows {
+  std::span<const Query> spatial;
+  std::span<const Query2D> planar;  // when the queries are 2D
+  bool in_2d = false;
+};
+
+QueryRows query_rows(py::handle object, const char* name, py::array& keep) {
   static_assert(sizeof(Query) == 24 * sizeof(double), "Query is 24 doubles, no padding");
+  static_assert(sizeof(Query2D) == 16 * sizeof(double), "Query2D is 16 doubles, no padding");
   py::array array = ensure_array(object, name);
   if (array.dtype().kind() != 'f')
     throw py::type_error(std::string(name) + ": queries must be float64 or float32, got " + dtype_name(array));
-  const bool shape_ok = (array.ndim() == 3 && array.shape(1) == 8 && array.shape(2) == 3) ||
-                        (array.ndim() == 2 && array.shape(1) == 24);
-  if (!shape_ok) {
+  const auto shaped = [&](py::ssize_t dimension) {
+    return (array.ndim() == 3 && array.shape(1) == 8 && array.shape(2) == dimension) ||
+           (array.ndim() == 2 && array.shape(1) == 8 * dimension);
+  };
+  const bool in_2d = shaped(2);
+  if (!in_2d && !shaped(3)) {
     std::string shape;
     for (py::ssize_t d = 0; d < array.ndim(); ++d) shape += (d ? " x " : "") + std::to_string(array.shape(d));
-    throw py::value_error(std::string(name) + ": expected N x 8 x 3 or N x 24, got " + (shape.empty() ? "a scalar" : shape));
+    throw py::value_error(std::string(name) + ": expected N x 8 x 3 or N x 24 (2D: N x 8 x 2 or N x 16), got " +
+                          (shape.empty() ? "a scalar" : shape));
   }
   if (!readable_in_place<double>(array) || (array.flags() & kCContiguous) == 0) array = copy_as<double>(array);
   keep = array;
-  return {static_cast<const Query*>(array.data()), static_cast<std::size_t>(array.shape(0))};
+  const auto count = static_cast<std::size_t>(array.shape(0));
+  if (in_2d) return {{}, {static_cast<const Query2D*>(array.data()), count}, true};
+  return {{static_cast<const Query*>(array.data()), count}, {}, false};
 }
 
-// One query, 8 x 3 (or 24) coordinates; integers are taken as the doubles they are.
+// One query, 8 x 3 (or 24) coordinates, or 8 x 2 (or 16) of a 2D scene
+// (lifted to z = 0); integers are taken as the doubles they are.
 Query one_query(py::handle object, const char* name) {
   py::array array = ensure_array(object, name);
-  if (array.size() != 24)
-    throw py::value_error(std::string(name) + ": expected 8 x 3 coordinates, got " + std::to_string(array.size()));
+  if (array.size() != 24 && array.size() != 16)
+    throw py::value_error(std::string(name) + ": expected 8 x 3 coordinates (2D: 8 x 2), got " +
+                          std::to_string(array.size()));
   const char kind = array.dtype().kind();
   if (kind == 'i' || kind == 'u') array = copy_as<double>(array);
   py::array keep;
-  return query_span(array.attr("reshape")(1, 24), name, keep)[0];
+  const QueryRows rows = query_rows(array.attr("reshape")(1, array.size()), name, keep);
+  return rows.in_2d ? lifted(rows.planar[0]) : rows.spatial[0];
 }
 
 Vec3 point(py::handle object, const char* name) {
@@ -503,17 +521,18 @@ py::object batch_ccd_py(const std::string& kind_name, py::object queries, py::ob
   const Kind kind = kind_from(kind_name);
   const Options options = parse_options(keywords);
   py::array keep_queries, keep_separations;
-  const std::span<const Query> query_list = query_span(queries, "queries", keep_queries);
+  const QueryRows rows = query_rows(queries, "queries", keep_queries);
   const bool per_query = !min_distances.is_none();
   if (per_query) keep_separations = double_vector(min_distances, "min_distances");
+  const std::span<const double> separations = per_query ? double_span(keep_separations) : std::span<const double>{};
   py::object holder;
   Result& result = result_for(out, holder);
   const std::shared_ptr<BatchResult> storage = storage_for(result, options);
   py::gil_scoped_release release;
-  if (per_query)
-    batch_ccd(kind, query_list, double_span(keep_separations), options, *storage);
+  if (rows.in_2d)
+    batch_ccd(kind, rows.planar, separations, options, *storage);
   else
-    batch_ccd(kind, query_list, options, *storage);
+    batch_ccd(kind, rows.spatial, separations, options, *storage);
   return holder;
 }
 
@@ -529,11 +548,14 @@ QueryResult single_query(Kind kind, const std::array<py::object, Points>& points
   return query_ccd(kind, query, options);
 }
 
-py::array_t<double> query_array(const Query& query) {
-  py::array_t<double> array({8, 3});
+// A query as an 8 x 3 array (Query), or 8 x 2 (Query2D).
+template <class QueryType>
+py::array_t<double> query_array(const QueryType& query) {
+  constexpr py::ssize_t dimension = std::tuple_element_t<0, decltype(QueryType::points)>::SizeAtCompileTime;
+  py::array_t<double> array({py::ssize_t{8}, dimension});
   auto a = array.mutable_unchecked<2>();
   for (int i = 0; i < 8; ++i)
-    for (int j = 0; j < 3; ++j) a(i, j) = query.points[i](j);
+    for (int j = 0; j < dimension; ++j) a(i, j) = query.points[i](j);
   return array;
 }
 
@@ -996,7 +1018,8 @@ queries    N x 8 x 3 (or N x 24) float64, eight points a query, t0 first, in
            Query's order: vertex_face p, a, b, c; edge_edge ea0, ea1, eb0,
            eb1; vertex_edge p, p, e0, e1; vertex_vertex p, p, q, q
            (make_query builds them). C-ordered float64 is read in place,
-           anything else copied once.
+           anything else copied once. A 2D scene's: N x 8 x 2 (or N x 16),
+           the queries lifted to the plane z = 0.
 min_distances
            one separation per query (1-D, length N), replacing min_distance.
 out        a BatchResult of an earlier call whose storage is reused.
@@ -1075,7 +1098,8 @@ Point p against point q: hit when they come within min_distance.
       doc(R"(query_ccd(kind, query, **options) -> QueryResult
 
 One query of any kind: 8 x 3 (or 24) coordinates in Query's order, as a
-row of batch_ccd's queries. The same answer as the calls above.
+row of batch_ccd's queries (2D: 8 x 2, lifted to z = 0). The same answer as
+the calls above.
 )").c_str());
   m.def(
       "squared_distance",
@@ -1092,23 +1116,31 @@ simulator takes a per-pair separation from.)");
       "make_query",
       [](const std::string& kind, py::object points_t0, py::object points_t1) {
         const Kind k = kind_from(kind);
-        const auto points = [](py::object object, const char* name) {
+        const auto values = [](py::object object, const char* name) {
           py::array array = ensure_array(object, name);
-          if (array.ndim() != 2 || array.shape(1) != 3)
-            throw py::value_error(std::string(name) + ": expected k x 3 points");
-          const py::array_t<double> values = copy_as<double>(array);
-          std::vector<Vec3> result;
-          for (py::ssize_t i = 0; i < values.shape(0); ++i) result.emplace_back(values.at(i, 0), values.at(i, 1), values.at(i, 2));
+          if (array.ndim() != 2 || (array.shape(1) != 3 && array.shape(1) != 2))
+            throw py::value_error(std::string(name) + ": expected k x 3 points (2D: k x 2)");
+          return py::array_t<double>(copy_as<double>(array));
+        };
+        const py::array_t<double> start = values(points_t0, "points_t0"), end = values(points_t1, "points_t1");
+        if (start.shape(1) != end.shape(1))
+          throw py::value_error("points_t0 and points_t1: 2D and 3D points mixed");
+        const auto points = [](const py::array_t<double>& array, auto point) {
+          std::vector<decltype(point)> result(static_cast<std::size_t>(array.shape(0)));
+          for (std::size_t i = 0; i < result.size(); ++i)
+            for (int j = 0; j < point.size(); ++j) result[i](j) = array.at(static_cast<py::ssize_t>(i), j);
           return result;
         };
-        return query_array(make_query(k, points(points_t0, "points_t0"), points(points_t1, "points_t1")));
+        if (start.shape(1) == 2) return query_array(make_query(k, points(start, Vec2()), points(end, Vec2())));
+        return query_array(make_query(k, points(start, Vec3()), points(end, Vec3())));
       },
       py::arg("kind"), py::arg("points_t0"), py::arg("points_t1"),
-      R"(make_query(kind, points_t0, points_t1) -> ndarray (8 x 3)
+      R"(make_query(kind, points_t0, points_t1) -> ndarray (8 x 3, or 8 x 2)
 
 The query of `kind` whose points at t0 are points_t0 and at t1 points_t1
 (4, 4, 3 or 2 points each: vertex_edge p, e0, e1; vertex_vertex p, q),
-in Query's layout with the repetitions. ValueError for another count.)");
+in Query's layout with the repetitions; 2D points (k x 2) give a 2D query.
+ValueError for another count.)");
   m.def(
       "unique_edges",
       [](py::object faces) {

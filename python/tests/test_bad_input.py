@@ -80,7 +80,7 @@ def test_wrong_shapes(scene):
         batchccd.mesh_ccd(x0, x1[:-1], faces)
     with pytest.raises(ValueError, match="edge_edge: expected 4 or 2 columns, got 3"):
         batchccd.mesh_ccd(x0, x1, faces, edge_edge=lists["edge_edge"][:, :3])
-    with pytest.raises(ValueError, match="N x 8 x 3 or N x 24, got 2 x 7 x 3"):
+    with pytest.raises(ValueError, match=r"N x 8 x 3 or N x 24 \(2D: N x 8 x 2 or N x 16\), got 2 x 7 x 3"):
         batchccd.batch_ccd("vf", np.zeros((2, 7, 3)))
     with pytest.raises(ValueError, match="p_t0: expected 3 coordinates"):
         batchccd.vertex_vertex_ccd([0, 0], [0, 0, 0], [0, 0, 0], [0, 0, 0])

@@ -152,7 +152,7 @@ def test_one_query_calls_take_integer_coordinates_and_check_their_size():
     query = [[0, 0, 1], [0, 0, 1], [0, 0, 0], [0, 0, 0], [0, 0, -1], [0, 0, -1], [0, 0, 0], [0, 0, 0]]
     assert batchccd.query_ccd("vv", query).hit
     assert batchccd.squared_distance("vv", query) == 1.0
-    with pytest.raises(ValueError, match="query: expected 8 x 3 coordinates, got 21"):
+    with pytest.raises(ValueError, match=r"query: expected 8 x 3 coordinates \(2D: 8 x 2\), got 21"):
         batchccd.query_ccd("vv", np.zeros((7, 3)))
 
 

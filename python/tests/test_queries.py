@@ -133,3 +133,33 @@ def test_isas_and_options():
         "evaluate_vertex_edge", "evaluate_vertex_vertex",
         "per_candidate_results", "hit_list", "isa", "threads", "tolerance", "toi_tolerance", "max_iterations",
         "exact_stage_iterations"}
+
+
+def test_2d_queries_are_the_queries_lifted_to_z_0():
+    rng = np.random.default_rng(7)
+    for kind, points in (("vf", 4), ("ee", 4), ("ve", 3), ("vv", 2)):
+        flat = []
+        for i in range(200):
+            start = np.round(rng.uniform(-1, 1, (points, 2)) * 2**16) / 2**16
+            end = start + np.round(rng.uniform(-0.8, 0.8, (points, 2)) * 2**16) / 2**16
+            if kind == "vv" and i % 3 == 0:
+                end[1] = end[0]  # the points meet at t = 1
+            flat.append(batchccd.make_query(kind, start, end))
+        flat = np.array(flat)
+        assert flat.shape == (200, 8, 2)
+        lifted = np.concatenate([flat, np.zeros((200, 8, 1))], axis=2)
+        for options in ({}, {"mode": "exact"}, {"min_distance": 0.05}):
+            in_2d = batchccd.batch_ccd(kind, flat, **options)
+            in_3d = batchccd.batch_ccd(kind, lifted, **options)
+            assert np.array_equal(in_2d.hit, in_3d.hit) and np.array_equal(in_2d.toi, in_3d.toi)
+            assert 0 < in_2d.hit.sum() < len(in_2d.hit), (kind, options)
+            rows = batchccd.batch_ccd(kind, flat.reshape(200, 16), np.full(200, 0.01), **options)
+            assert np.array_equal(rows.hit, batchccd.batch_ccd(kind, lifted, np.full(200, 0.01), **options).hit)
+        default = batchccd.batch_ccd(kind, lifted)
+        for i in range(0, 200, 17):
+            one = batchccd.query_ccd(kind, flat[i])
+            assert (one.hit, one.toi) == (default.hit[i], default.toi[i])
+    with pytest.raises(ValueError, match=r"N x 8 x 2 or N x 16\), got 5 x 8 x 4"):
+        batchccd.batch_ccd("ve", np.zeros((5, 8, 4)))
+    with pytest.raises(ValueError, match="2D and 3D points mixed"):
+        batchccd.make_query("vv", np.zeros((2, 2)), np.zeros((2, 3)))

@@ -95,6 +95,13 @@ std::vector<Isa> available_isas();
 BatchResult batch_ccd(Kind kind, std::span<const Query> queries,
                       const Options& options = {});
 
+// Raw queries of a 2D scene (Query2D): the same calls, options, promises
+// and bad-input contract as for the queries lifted to the plane z = 0
+// (batch_ccd above and below), where they are decided in the plane. The
+// lifted queries are written once into the working storage each host thread
+// keeps, so a frame loop still allocates nothing once it has grown.
+BatchResult batch_ccd(Kind kind, std::span<const Query2D> queries, const Options& options = {});
+
 // A mesh as a simulator holds it, viewed in place (views.hpp: double or
 // float positions, any storage order or strides; nothing is copied, the
 // arrays must outlive the view): vertex positions at t0 and t1 (n x 3, any
@@ -169,6 +176,7 @@ BatchResult mesh_ccd(const MeshView& mesh, const CandidateLists& candidates,
 // its results (and the working storage each host thread keeps for its
 // calls) have grown to size, and they are written in parallel. What a call refuses (the exceptions above) leaves `out` as it was.
 void batch_ccd(Kind kind, std::span<const Query> queries, const Options& options, BatchResult& out);
+void batch_ccd(Kind kind, std::span<const Query2D> queries, const Options& options, BatchResult& out);
 void mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const Options& options,
               BatchResult& out);
 
@@ -177,6 +185,8 @@ void mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const Opti
 // the whole call with std::invalid_argument naming the list, the index and
 // the value.
 void batch_ccd(Kind kind, std::span<const Query> queries, std::span<const double> min_distances,
+               const Options& options, BatchResult& out);
+void batch_ccd(Kind kind, std::span<const Query2D> queries, std::span<const double> min_distances,
                const Options& options, BatchResult& out);
 void mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const MinDistances& min_distances,
               const Options& options, BatchResult& out);

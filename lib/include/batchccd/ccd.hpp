@@ -58,6 +58,8 @@ QueryResult vertex_vertex_ccd(const Vec3& p_t0, const Vec3& q_t0, const Vec3& p_
 // One query of any kind, its eight points in the order Query documents
 // (the order of the query files). The same as the calls above.
 QueryResult query_ccd(Kind kind, const Query& query, const Options& options = {});
+// A query of a 2D scene (Query2D) is asked as lifted(query): the plane
+// z = 0, where it is decided as planar motion.
 
 // The squared Euclidean distance between the query's closed primitives at
 // time t in [0, 1], in plain double arithmetic (closest points by

@@ -11,6 +11,8 @@ namespace batchccd {
 // A point. Coordinates in any length unit: none is assumed, and tolerances
 // are relative to each query's size.
 using Vec3 = Eigen::Vector3d;
+// A point of a 2D scene: the 3D point (x, y, 0).
+using Vec2 = Eigen::Vector2d;
 
 // The elementary tests: the two of triangle-mesh CCD (docs/design.md §1), and
 // point-edge and point-point for rods, particles and codimensional contact
@@ -42,6 +44,19 @@ struct Query {
 // vertex_edge p, e0, e1; vertex_vertex p, q). Throws std::invalid_argument
 // when a span has another size.
 Query make_query(Kind kind, std::span<const Vec3> points_t0, std::span<const Vec3> points_t1);
+
+// A query of a 2D scene: Query's eight points in the same order, each the
+// 3D point (x, y, 0) (lifted). Every call and promise is that of the lifted
+// query; motion in a plane is decided there (docs/design.md §5a).
+struct Query2D {
+  std::array<Vec2, 8> points;
+};
+
+// As make_query above, in 2D.
+Query2D make_query(Kind kind, std::span<const Vec2> points_t0, std::span<const Vec2> points_t1);
+
+// The query in the plane z = 0.
+Query lifted(const Query2D& query);
 
 // Bad input, per query, in every mode and entry point (tests/test_bad_input.cpp):
 // - A NaN or infinite coordinate among the eight points: not evaluated;

@@ -90,6 +90,8 @@ void validate(const Options& options, const Settings& settings);
 QueryResult query_ccd(Kind kind, const Query& query, const Options& options, const Settings& settings);
 void batch_ccd(Kind kind, std::span<const Query> queries, std::span<const double> min_distances,
                const Options& options, const Settings& settings, BatchResult& out);
+void batch_ccd(Kind kind, std::span<const Query2D> queries, std::span<const double> min_distances,
+               const Options& options, const Settings& settings, BatchResult& out);
 void mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const MinDistances& min_distances,
               const Options& options, const Settings& settings, BatchResult& out);
 BatchResult batch_ccd(Kind kind, std::span<const Query> queries, const Options& options,
