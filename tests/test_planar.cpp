@@ -16,6 +16,8 @@
 #include "batchccd/lab.hpp"
 #include "exact/exact_solver.hpp"
 #include "exact/plane_axis.hpp"
+#include "exact_distance.hpp"
+#include "reference/planar_solver.hpp"
 #include "reference/scaled_query.hpp"
 
 namespace batchccd {
@@ -285,6 +287,136 @@ TEST(PlanarCases, PointKinds) {
     };
     expect_exact_answers(Kind::vertex_vertex, point_point({1, 0}, {0, 1}));  // meet at t = 1/2
     expect_exact_answers(Kind::vertex_vertex, point_point({1, 0}, {0, 2}));  // miss
+  }
+}
+
+// With a separation, motion in an axis plane is decided there
+// (solve_planar_within). Every answer is held to exact labels (a witness
+// with exact squared distance <= D^2, or a certified Lipschitz miss) and
+// to the generic search over (t, u, v) in exact mode, an independent
+// certified procedure: the same decisions, TOIs within 2^-40 of each other.
+TEST(PlanarWithin, AgreesWithExactLabelsAndTheGenericSearch) {
+  lab::Settings generic;
+  generic.planar_path = false;
+  int hits = 0, labelled = 0, queries = 0, certain = 0;
+  for (const Plane& plane : {kFloor, kRaisedFloor, kWall})
+    for (Kind kind : {Kind::vertex_face, Kind::edge_edge, Kind::vertex_edge, Kind::vertex_vertex}) {
+      PlanarGenerator generator(41 + static_cast<unsigned>(kind));
+      for (int i = 0; i < 40; ++i) {
+        const Query query = generator.query(kind, plane);
+        for (double separation : {0x1p-6, 0.125}) {
+          SCOPED_TRACE(::testing::Message() << to_string(kind) << " query " << i << " D " << separation << " "
+                                            << ::testing::PrintToString(query.points));
+          ++queries;
+          const testing::Labelled truth = testing::label(reference::evaluated_kind(kind), query, separation);
+          Options options = options_for(Mode::exact);
+          options.min_distance = separation;
+          const QueryResult exact = query_ccd(kind, query, options);
+          const QueryResult searched = lab::query_ccd(kind, query, options, generic);
+          ASSERT_EQ(exact.hit, searched.hit);
+          if (exact.hit) {
+            EXPECT_NEAR(exact.toi, searched.toi, 2 * kExactToiWidth);
+          }
+          options.mode = Mode::conservative;
+          const QueryResult conservative = query_ccd(kind, query, options);
+          ASSERT_EQ(conservative.hit, exact.hit);
+          if (exact.hit) {
+            EXPECT_LE(conservative.toi, exact.toi + 2 * kExactToiWidth);
+            EXPECT_GE(conservative.toi, exact.toi - options.toi_tolerance - 2 * kExactToiWidth);
+          }
+          if (truth.label != testing::Label::unlabelled) {
+            ++labelled;
+            ASSERT_EQ(exact.hit, truth.label == testing::Label::hit);
+            if (exact.hit) EXPECT_LE(exact.toi, truth.witness);
+          }
+          hits += exact.hit;
+          // The planar search itself: certain, and a hit's bracket ends
+          // where the distance is exactly within D.
+          const reference::ScaledQuery scaled = reference::scale_query(reference::evaluated_kind(kind), query);
+          const int axis = *exact::exact_plane_axis(query);
+          const reference::PlanarOutcome outcome = reference::solve_planar_within(
+              reference::planar_shape(reference::evaluated_kind(kind), query), scaled, axis,
+              reference::to_scaled_length(scaled, separation), 1, kExactToiWidth);
+          certain += outcome.certain;
+          if (outcome.certain && outcome.hit) {
+            const testing::Rational d(separation);
+            EXPECT_LE(testing::squared_distance_at(reference::evaluated_kind(kind), query, outcome.toi_upper), d * d);
+            EXPECT_EQ(outcome.toi, exact.toi);
+          }
+        }
+      }
+    }
+  EXPECT_GT(hits, queries / 5);
+  EXPECT_GT(labelled, queries * 9 / 10);
+  EXPECT_GT(certain, queries * 95 / 100);
+}
+
+// Events whose time is known exactly, on the floor and on a wall (x = 0.5).
+TEST(PlanarWithin, KnownTimes) {
+  for (const Plane& plane : {kFloor, kWall}) {
+    Options options = options_for(Mode::exact);
+    options.min_distance = 0.25;
+    const auto point_edge = [&](std::array<double, 2> p0, std::array<double, 2> p1) {
+      return make_query(Kind::vertex_edge, std::vector<Vec3>{plane(p0[0], p0[1]), plane(0, 0), plane(1, 0)},
+                        std::vector<Vec3>{plane(p1[0], p1[1]), plane(0, 0), plane(1, 0)});
+    };
+    const auto expect_toi = [&](Kind kind, const Query& query, double toi) {
+      const QueryResult result = query_ccd(kind, query, options);
+      ASSERT_TRUE(result.hit) << toi;
+      EXPECT_LE(result.toi, toi);
+      EXPECT_GE(result.toi, toi - kExactToiWidth);
+    };
+    const auto expect_miss = [&](Kind kind, const Query& query) { EXPECT_FALSE(query_ccd(kind, query, options).hit); };
+    // Toward the segment's interior: |y| = 1 - 2t reaches 0.25 at t = 3/8.
+    expect_toi(Kind::vertex_edge, point_edge({0.5, 1}, {0.5, -1}), 0.375);
+    // Toward its end (1, 0) along x: 1.75 - 2t - 1 = 0.25 at t = 1/4.
+    expect_toi(Kind::vertex_edge, point_edge({1.75, 0}, {-0.25, 0}), 0.25);
+    // Passing the end at height 0.2 (within 0.25 of it only near x = 1):
+    // x = 2 - 2t, (x - 1)^2 + 0.04 = 1/16 at x - 1 = 0.15, t = 0.425.
+    expect_toi(Kind::vertex_edge, point_edge({2, 0.2}, {0, 0.2}), 0.425);
+    expect_miss(Kind::vertex_edge, point_edge({0.5, 0.5}, {2, 0.5}));  // parallel, 0.5 away
+    expect_toi(Kind::vertex_edge, point_edge({0.5, 0.125}, {0.5, 0.125}), 0);  // static, within D
+    // A vertex deep inside a triangle, far from its edges: within D at 0.
+    const Query inside = make_query(Kind::vertex_face, std::vector<Vec3>{plane(1, 1), plane(0, 0), plane(4, 0), plane(0, 4)},
+                                    std::vector<Vec3>{plane(1.5, 1), plane(0, 0), plane(4, 0), plane(0, 4)});
+    expect_toi(Kind::vertex_face, inside, 0);
+    // Two long segments crossing in an X, every end 4 away from the other
+    // segment: within D at 0 by the crossing alone.
+    const Query crossing = make_query(Kind::edge_edge,
+                                      std::vector<Vec3>{plane(-4, 0), plane(4, 0), plane(0, -4), plane(0, 4)},
+                                      std::vector<Vec3>{plane(-4, 0), plane(4, 0), plane(1, -4), plane(1, 4)});
+    expect_toi(Kind::edge_edge, crossing, 0);
+    // Parallel segments closing in: y = 1 - t reaches 0.25 at t = 3/4.
+    const Query closing = make_query(Kind::edge_edge,
+                                     std::vector<Vec3>{plane(0, 0), plane(2, 0), plane(0.5, 1), plane(1.5, 1)},
+                                     std::vector<Vec3>{plane(0, 0), plane(2, 0), plane(0.5, 0), plane(1.5, 0)});
+    expect_toi(Kind::edge_edge, closing, 0.75);
+    // Points: |x| = 2 - 4t reaches 0.25 at t = 7/16.
+    const Query points = make_query(Kind::vertex_vertex, std::vector<Vec3>{plane(2, 0), plane(0, 0)},
+                                    std::vector<Vec3>{plane(-2, 0), plane(0, 0)});
+    expect_toi(Kind::vertex_vertex, points, 7.0 / 16);
+    // tmax before the contact: a miss.
+    options.tmax = 0.25;
+    expect_miss(Kind::vertex_vertex, points);
+  }
+}
+
+// Units: a query scaled by 2^k gets the same answers with D scaled alike.
+TEST(PlanarWithin, ScaleInvariant) {
+  PlanarGenerator generator(47);
+  for (int i = 0; i < 60; ++i) {
+    const Kind kind = i % 2 ? Kind::edge_edge : Kind::vertex_face;
+    const Query query = generator.query(kind, kFloor);
+    Options options = options_for(Mode::conservative);
+    options.min_distance = 0.0625;
+    const QueryResult unit = query_ccd(kind, query, options);
+    for (int exponent : {-400, 400}) {
+      Options scaled = options;
+      scaled.min_distance = std::ldexp(options.min_distance, exponent);
+      const QueryResult result = query_ccd(kind, scaled_by(query, std::ldexp(1.0, exponent)), scaled);
+      EXPECT_EQ(result.hit, unit.hit);
+      EXPECT_EQ(result.toi, unit.toi);
+    }
   }
 }
 

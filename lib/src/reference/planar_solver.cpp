@@ -65,7 +65,7 @@ struct Factor {
   Point2 u, v;
   bool dot = false;
 };
-Ball product(const Point2& u, const Point2& v, bool is_dot) { return is_dot ? dot(u, v) : cross(u, v); }
+inline Ball product(const Point2& u, const Point2& v, bool is_dot) { return is_dot ? dot(u, v) : cross(u, v); }
 Ball value(const Factor& factor) { return product(factor.u, factor.v, factor.dot); }
 
 constexpr int kConditions = 4;
@@ -210,50 +210,85 @@ bool certain_contact(PlanarShape shape, const std::array<int, kConditions>& sign
   return false;
 }
 
+// The root in (0, 1) of (1-s)^2 c0 + 2 s (1-s) c1 + s^2 c2 with c0 < 0 <
+// c2 (an estimate: the bracket around it is what is certified).
+double quadratic_root(double c0, double c1, double c2) {
+  const double a = c0 - 2 * c1 + c2, b = 2 * (c1 - c0), c = c0;
+  double root = 0.5;
+  if (std::fabs(a) <= 1e-12 * (std::fabs(b) + std::fabs(c))) {
+    root = -c / b;
+  } else {
+    const double discriminant = std::max(0.0, b * b - 4 * a * c);
+    const double q = -0.5 * (b + std::copysign(std::sqrt(discriminant), b));
+    const double r1 = q / a, r2 = q != 0 ? c / q : 0.5;
+    root = (r1 >= 0 && r1 <= 1) ? r1 : r2;
+  }
+  return std::isfinite(root) ? std::min(1.0, std::max(0.0, root)) : 0.5;
+}
+
+// What examining one interval found: a certain outcome (a contact at its
+// start, a bracketed first contact, or nothing), or that it must be split.
+struct Step {
+  std::optional<PlanarOutcome> outcome;
+  bool split = false;
+  bool excluded() const { return !outcome && !split; }
+};
+
+// Dyadic intervals of [0, 1], earliest first, each examined by
+// `examine(start, end)`, down to kSmallestWidth and within kIntervalBudget.
+// The whole step whatever tmax: the intervals, and so the TOI, do not
+// depend on it (a shrinking window gives every query the TOI it gets alone).
+// A contact counts when its first time is certainly at most tmax; one
+// certainly after tmax is a miss; one whose bracket straddles tmax is left
+// uncertain.
+template <class Examine>
+PlanarOutcome search_intervals(const Examine& examine, double tmax) {
+  struct Interval {
+    double start, end;
+  };
+  std::array<Interval, 48> stack;  // depth first: at most one pending half a level, 45 levels
+  int pending = 0;
+  stack[pending++] = {0, 1};
+  for (int budget = kIntervalBudget; pending > 0; --budget) {
+    if (budget == 0) return {};
+    const Interval interval = stack[--pending];
+    if (interval.start > tmax) break;  // the earliest left: nothing later counts
+    const Step step = examine(interval.start, interval.end);
+    if (step.outcome) {
+      const PlanarOutcome& outcome = *step.outcome;
+      if (!outcome.hit || outcome.toi_upper <= tmax) return outcome;
+      if (outcome.toi > tmax) return {true, false, 0, 0};
+      return {};
+    }
+    if (!step.split) continue;
+    if (interval.end - interval.start <= kSmallestWidth) return {};
+    const double middle = 0.5 * (interval.start + interval.end);
+    stack[pending++] = {middle, interval.end};
+    stack[pending++] = {interval.start, middle};
+  }
+  return {true, false, 0, 0};  // every interval excluded
+}
+
+// A time in (start, end) bracketed to width: f(low) certainly negative (or
+// low = start) and f(high) certainly positive (or high = end), probing
+// around the estimate `t` of f's one root there.
+template <class Signed>
+std::optional<PlanarOutcome> bracket_root(const Signed& f, double t, double start, double end, double toi_width) {
+  for (double width = toi_width / 64; width <= toi_width / 2; width *= 4) {
+    const double low = std::max(start, t - width), high = std::min(end, t + width);
+    if (low < high && (low == start || f(low).certainly_negative()) && (high == end || f(high).certainly_positive()))
+      return PlanarOutcome{true, true, low, high};
+  }
+  return std::nullopt;
+}
+
 class PlanarSearch {
  public:
   PlanarSearch(PlanarShape shape, const PlanarMotion& motion, double toi_width)
       : shape_(shape), motion_(motion), toi_width_(toi_width) {}
 
-  PlanarOutcome run(double tmax) {
-    struct Interval {
-      double start, end;
-    };
-    std::array<Interval, 48> stack;  // depth first: at most one pending half a level, 45 levels
-    int pending = 0;
-    // The whole step, whatever tmax: the intervals, and so the TOI, do not
-    // depend on it (a shrinking window gives every query the TOI it gets alone).
-    stack[pending++] = {0, 1};
-    for (int budget = kIntervalBudget; pending > 0; --budget) {
-      if (budget == 0) return {};
-      const Interval interval = stack[--pending];
-      if (interval.start > tmax) break;  // the earliest left: nothing later counts
-      const Step step = examine(interval.start, interval.end);
-      if (step.outcome) return within(*step.outcome, tmax);
-      if (!step.split) continue;
-      if (interval.end - interval.start <= kSmallestWidth) return {};
-      const double middle = 0.5 * (interval.start + interval.end);
-      stack[pending++] = {middle, interval.end};
-      stack[pending++] = {interval.start, middle};
-    }
-    return {true, false, 0, 0};  // every interval excluded
-  }
-
- private:
-  struct Step {
-    std::optional<PlanarOutcome> outcome;
-    bool split = false;
-  };
-
-  std::array<Point2, 3> points_at(double t) const {
-    return {motion_.at(0, t), motion_.at(1, t), motion_.at(2, t)};
-  }
-
-  Ball condition_at(int index, double t) const { return value(factors_at(t)[index]); }
-
-  Factors factors_at(double t) const {
-    const std::array<Point2, 3> p = points_at(t);
-    return factors(shape_, p[0], p[1], p[2]);
+  PlanarOutcome run(double tmax) const {
+    return search_intervals([this](double start, double end) { return examine(start, end); }, tmax);
   }
 
   Step examine(double start, double end) const {
@@ -275,13 +310,16 @@ class PlanarSearch {
     return single_condition(reading.requirement, q[reading.requirement.index], start, end);
   }
 
-  // A contact counts when its first time is certainly at most tmax; one
-  // certainly after tmax is a miss; one whose bracket straddles tmax is left
-  // to the exact stage.
-  static PlanarOutcome within(const PlanarOutcome& outcome, double tmax) {
-    if (!outcome.hit || outcome.toi_upper <= tmax) return outcome;
-    if (outcome.toi > tmax) return {true, false, 0, 0};
-    return {};
+ private:
+  std::array<Point2, 3> points_at(double t) const {
+    return {motion_.at(0, t), motion_.at(1, t), motion_.at(2, t)};
+  }
+
+  Ball condition_at(int index, double t) const { return value(factors_at(t)[index]); }
+
+  Factors factors_at(double t) const {
+    const std::array<Point2, 3> p = points_at(t);
+    return factors(shape_, p[0], p[1], p[2]);
   }
 
   // The one condition left, f = sign * q >= 0, the others certain over
@@ -296,34 +334,270 @@ class PlanarSearch {
     const double root = quadratic_root(f0.middle, sign * 0.5 * q.middle.middle, f2.middle);
     const double t = start + root * (end - start);
     const auto f = [&](double time) { return signed_ball(condition_at(requirement.index, time)); };
-    for (double width = toi_width_ / 64; width <= toi_width_ / 2; width *= 4) {
-      const double low = std::max(start, t - width), high = std::min(end, t + width);
-      if (low < high && (low == start || f(low).certainly_negative()) &&
-          (high == end || f(high).certainly_positive()))
-        return {PlanarOutcome{true, true, low, high}, false};
-    }
+    if (auto bracket = bracket_root(f, t, start, end, toi_width_)) return {bracket, false};
     return {std::nullopt, true};
-  }
-
-  // The root in (0, 1) of (1-s)^2 c0 + 2 s (1-s) c1 + s^2 c2 with c0 < 0 <
-  // c2 (an estimate: the bracket around it is what is certified).
-  static double quadratic_root(double c0, double c1, double c2) {
-    const double a = c0 - 2 * c1 + c2, b = 2 * (c1 - c0), c = c0;
-    double root = 0.5;
-    if (std::fabs(a) <= 1e-12 * (std::fabs(b) + std::fabs(c))) {
-      root = -c / b;
-    } else {
-      const double discriminant = std::max(0.0, b * b - 4 * a * c);
-      const double q = -0.5 * (b + std::copysign(std::sqrt(discriminant), b));
-      const double r1 = q / a, r2 = q != 0 ? c / q : 0.5;
-      root = (r1 >= 0 && r1 <= 1) ? r1 : r2;
-    }
-    return std::isfinite(root) ? std::min(1.0, std::max(0.0, root)) : 0.5;
   }
 
   PlanarShape shape_;
   const PlanarMotion& motion_;
   double toi_width_;
+};
+
+// The quartic U(t) * V(t) of two quadratics over an interval, from their
+// scaled Bernstein coefficients (Quadratic: the middle one doubled): its
+// Bernstein coefficients each times a positive constant (1, 4, 6, 4, 1),
+// the same for every quartic, so a sum of them keeps its signs.
+using Quartic = std::array<Ball, 5>;
+
+Quartic times(const Quadratic& u, const Quadratic& v) {
+  return {u.start * v.start, u.start * v.middle + u.middle * v.start,
+          u.start * v.end + u.middle * v.middle + u.end * v.start, u.middle * v.end + u.end * v.middle,
+          u.end * v.end};
+}
+
+// A quadratic as the quartic it is: times the constant 1.
+Quartic elevated(const Quadratic& q) { return times(q, Quadratic{{1, 0}, {2, 0}, {1, 0}}); }
+
+// A condition "f(t) >= 0" over an interval: f's scaled Bernstein
+// coefficients (3 of a quadratic, 5 of a quartic).
+struct Condition {
+  std::array<Ball, 5> coefficient;
+  int degree = 2;
+
+  static Condition of(const Quadratic& q) { return {{q.start, q.middle, q.end}, 2}; }
+  static Condition of(const Quartic& q) { return {q, 4}; }
+  const Ball& first() const { return coefficient[0]; }
+  const Ball& last() const { return coefficient[degree]; }
+  // +1 where f is certainly positive over the whole interval, -1 certainly
+  // negative, else 0 (Bernstein coefficients bound the polynomial).
+  int sign_over() const {
+    bool positive = true, negative = true;
+    for (int k = 0; k <= degree; ++k) {
+      positive &= coefficient[k].certainly_positive();
+      negative &= coefficient[k].certainly_negative();
+    }
+    return positive ? 1 : (negative ? -1 : 0);
+  }
+  // f < 0 at the start, f > 0 at the end and one sign change among the
+  // coefficients: exactly one root inside, where f turns positive
+  // (Descartes' rule in Bernstein form).
+  bool rises_once() const {
+    int previous = -1, changes = 0;
+    for (int k = 0; k <= degree; ++k) {
+      const int sign = sign_of(coefficient[k]);
+      if (sign == 0) return false;
+      changes += sign != previous;
+      previous = sign;
+    }
+    return coefficient[0].certainly_negative() && changes == 1;
+  }
+  // Its root in (0, 1), estimated in double (the bracket is what is
+  // certified): bisection on the sign of de Casteljau's value.
+  double root_estimate() const {
+    static constexpr double kScale[5][5] = {{1, 0.5, 1, 0, 0}, {}, {}, {}, {1, 0.25, 1.0 / 6, 0.25, 1}};
+    double c[5] = {};
+    for (int k = 0; k <= degree; ++k) c[k] = coefficient[k].middle * kScale[degree == 2 ? 0 : 4][k];
+    const auto at = [&](double s) {
+      double b[5];
+      std::copy(c, c + degree + 1, b);
+      for (int level = degree; level > 0; --level)
+        for (int k = 0; k < level; ++k) b[k] = (1 - s) * b[k] + s * b[k + 1];
+      return b[0];
+    };
+    double low = 0, high = 1;
+    for (int i = 0; i < 60 && high - low > 0x1p-52; ++i) {
+      const double middle = 0.5 * (low + high);
+      (at(middle) < 0 ? low : high) = middle;
+    }
+    return 0.5 * (low + high);
+  }
+};
+
+// Planar motion with a separation d (min_distance > 0), in a plane the
+// projection maps isometrically (an axis plane: a coordinate all points
+// share). The primitives come within d when they meet (PlanarSearch) or
+// when a vertex of one comes within d of a segment of the other: of two
+// disjoint convex polygons (points and segments included) the closest pair
+// is a vertex and an edge. A point p and a segment [A, B] are within d when
+//   |p - A|^2 <= d^2, or |p - B|^2 <= d^2, or
+//   (p - A).(B - A) >= 0, (p - B).(A - B) >= 0 and ((B - A) x (p - A))^2 <= d^2 |B - A|^2
+// (the last with |B - A| > 0 for a witness), quadratics and a quartic in t.
+// Intervals earliest first as PlanarSearch's: a contact at an interval's
+// start is certain when one of these holds there with certainty; an
+// interval is excluded when each fails throughout; where a single
+// condition is left to change sign, its root is bracketed.
+class PlanarDistanceSearch {
+ public:
+  PlanarDistanceSearch(PlanarShape shape, const PlanarMotion& motion, double separation, double toi_width)
+      : shape_(shape), motion_(motion), meeting_(shape, motion, toi_width), toi_width_(toi_width),
+        squared_separation_(Ball{separation, 0} * Ball{separation, 0}) {}
+
+  PlanarOutcome run(double tmax) const {
+    return search_intervals([this](double start, double end) { return examine(start, end); }, tmax);
+  }
+
+ private:
+  // A vertex (point index: 0 = x1 at the origin, 1..3 = x2..x4) against a
+  // segment between two of them (equal for a point), and which of its
+  // clauses to test (bit j: kClauses[j]): a pair of vertices is tested once
+  // (a triangle's corner ends two of its edges; an end of one segment meets
+  // each end of the other in two pairs).
+  struct Pair {
+    int point = 0, end0 = 0, end1 = 0;
+    unsigned clauses = 0;
+  };
+  static constexpr int kMostPairs = 4;
+  static constexpr int kConditionsPerPair = 5;  // |p-A|, |p-B|, the two dots, the quartic
+  static constexpr unsigned kNearA = 1, kNearB = 2, kOnLine = 4;
+
+  int pairs(std::array<Pair, kMostPairs>& pair) const {
+    switch (shape_) {
+      case PlanarShape::triangle_vertex:  // the vertex x4 against the triangle's edges
+        pair = {Pair{3, 0, 1, kNearA | kOnLine}, Pair{3, 1, 2, kNearA | kOnLine}, Pair{3, 2, 0, kNearA | kOnLine},
+                Pair{}};
+        return 3;
+      case PlanarShape::segments:  // each end against the other segment
+        pair = {Pair{0, 2, 3, kNearA | kNearB | kOnLine}, Pair{1, 2, 3, kNearA | kNearB | kOnLine},
+                Pair{2, 0, 1, kOnLine}, Pair{3, 0, 1, kOnLine}};
+        return 4;
+      case PlanarShape::vertex_segment: pair[0] = {0, 2, 3, kNearA | kNearB | kOnLine}; return 1;
+      case PlanarShape::segment_vertex: pair[0] = {2, 0, 1, kNearA | kNearB | kOnLine}; return 1;
+      case PlanarShape::vertices: pair[0] = {0, 2, 2, kNearA}; return 1;
+    }
+    return 0;
+  }
+
+  std::array<Point2, 4> points_at(double t) const {
+    return {Point2{}, motion_.at(0, t), motion_.at(1, t), motion_.at(2, t)};
+  }
+
+  // A pair's conditions over [start, end] (s and e: the points at its
+  // ends), each "f >= 0", computed when first asked for: 0 the point within
+  // d of A, 1 of B, 2 and 3 beyond neither end, 4 within d of the line.
+  class PairConditions {
+   public:
+    PairConditions(const Pair& pair, const std::array<Point2, 4>& s, const std::array<Point2, 4>& e,
+                   const Ball& squared_separation)
+        : pair_(pair), s_(s), e_(e), squared_separation_(squared_separation) {}
+
+    const Condition& f(int k) {
+      if (!(known_ >> k & 1)) {
+        f_[k] = compute(k);
+        known_ |= 1 << k;
+      }
+      return f_[k];
+    }
+
+    // |B - A|^2 (after f(4)).
+    const Quadratic& length() const { return length_; }
+
+   private:
+    Quadratic product_over(int from, int to, int from2, int to2, bool is_dot) const {
+      return quadratic(Factor{s_[to] - s_[from], s_[to2] - s_[from2], is_dot},
+                       Factor{e_[to] - e_[from], e_[to2] - e_[from2], is_dot});
+    }
+    Quadratic within(int end) const {  // d^2 - |p - end|^2
+      const Quadratic distance = product_over(end, pair_.point, end, pair_.point, true);
+      const Ball& d2 = squared_separation_;
+      return {d2 - distance.start, (d2 + d2) - distance.middle, d2 - distance.end};
+    }
+    Condition compute(int k) {
+      const int p = pair_.point, a = pair_.end0, b = pair_.end1;
+      switch (k) {
+        case 0: return Condition::of(within(a));
+        case 1: return Condition::of(within(b));
+        case 2: return Condition::of(product_over(a, p, a, b, true));
+        case 3: return Condition::of(product_over(b, p, b, a, true));
+        default: {
+          length_ = product_over(a, b, a, b, true);
+          const Quadratic cross = product_over(a, b, a, p, false);
+          const Quartic on_line = times(cross, cross), reach = elevated(length_);
+          Quartic f;
+          for (int i = 0; i < 5; ++i) f[i] = squared_separation_ * reach[i] - on_line[i];
+          return Condition::of(f);
+        }
+      }
+    }
+
+    Pair pair_;
+    const std::array<Point2, 4>& s_;
+    const std::array<Point2, 4>& e_;
+    const Ball& squared_separation_;
+    std::array<Condition, kConditionsPerPair> f_;
+    Quadratic length_;
+    unsigned known_ = 0;
+  };
+
+  // The clauses of a pair, conjunctions of its conditions: near A {0},
+  // near B {1}, on the line between the ends {2, 3, 4}. Cheap conditions
+  // first: a clause is excluded by its first condition certainly negative
+  // throughout.
+  static constexpr std::array<std::array<int, 3>, 3> kClauses{{{0, -1, -1}, {1, -1, -1}, {2, 3, 4}}};
+
+  Step examine(double start, double end) const {
+    // Meeting (distance 0): VF inside, EE crossing. A point's contacts with
+    // a segment or a point are within every d: the pairs cover them.
+    Step meeting;
+    if (shape_ == PlanarShape::triangle_vertex || shape_ == PlanarShape::segments) {
+      meeting = meeting_.examine(start, end);
+      if (meeting.outcome && meeting.outcome->toi == start) return meeting;  // at the start: the first
+    }
+    const std::array<Point2, 4> s = points_at(start), e = points_at(end);
+    std::array<Pair, kMostPairs> pair;
+    const int count = pairs(pair);
+    int open = meeting.excluded() ? 0 : 1;  // what may hold somewhere in the interval
+    std::optional<Uncertain> rising;          // the one open clause's one uncertain condition
+    for (int i = 0; i < count; ++i) {
+      PairConditions c(pair[i], s, e, squared_separation_);
+      for (int j = 0; j < 3; ++j) {
+        if (!(pair[i].clauses >> j & 1)) continue;
+        bool holds_at_start = true, excluded = false;
+        int uncertain = 0, which = -1;
+        for (const int k : kClauses[j]) {
+          if (k < 0) continue;
+          const Condition& f = c.f(k);
+          const int sign = f.sign_over();
+          if (sign < 0) {
+            excluded = true;
+            break;
+          }
+          holds_at_start &= f.first().certainly_positive();
+          if (sign == 0) ++uncertain, which = k;
+        }
+        if (excluded) continue;
+        const bool on_line = j == 2;  // a witness there needs |B - A| > 0
+        if (holds_at_start && (!on_line || c.length().start.certainly_positive()))
+          return {PlanarOutcome{true, true, start, start}, false};
+        const bool simple = uncertain == 1 && c.f(which).rises_once() && (!on_line || sign_over(c.length()) > 0);
+        rising = ++open == 1 && simple ? std::optional<Uncertain>({i, which}) : std::nullopt;
+      }
+    }
+    if (open == 0) return {};
+    if (open == 1 && !meeting.excluded()) return meeting;  // the meeting alone: its own answer
+    if (open == 1 && rising) {
+      // Before its root the clause fails and so does everything else; from
+      // it on, the clause holds: the first contact.
+      const Pair& p = pair[rising->pair];
+      const int k = rising->condition;
+      const double t = start + PairConditions(p, s, e, squared_separation_).f(k).root_estimate() * (end - start);
+      const auto at = [&](double time) {
+        const std::array<Point2, 4> x = points_at(time);
+        return PairConditions(p, x, x, squared_separation_).f(k).first();
+      };
+      if (auto bracket = bracket_root(at, t, start, end, toi_width_)) return {bracket, false};
+    }
+    return {std::nullopt, true};
+  }
+
+  struct Uncertain {
+    int pair, condition;
+  };
+
+  PlanarShape shape_;
+  const PlanarMotion& motion_;
+  PlanarSearch meeting_;
+  double toi_width_;
+  Ball squared_separation_;
 };
 
 }  // namespace
@@ -332,6 +606,12 @@ PlanarOutcome solve_planar(PlanarShape shape, const ScaledQuery& query, int axis
                            double toi_width) {
   const PlanarMotion motion = project(query, axis);
   return PlanarSearch(shape, motion, toi_width).run(tmax);
+}
+
+PlanarOutcome solve_planar_within(PlanarShape shape, const ScaledQuery& query, int axis, double separation,
+                                  double tmax, double toi_width) {
+  const PlanarMotion motion = project(query, axis);
+  return PlanarDistanceSearch(shape, motion, separation, toi_width).run(tmax);
 }
 
 }  // namespace batchccd::reference

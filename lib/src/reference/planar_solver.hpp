@@ -41,4 +41,15 @@ struct PlanarOutcome {
 // so those contacts are left to the exact stage (certain misses are not).
 PlanarOutcome solve_planar(PlanarShape shape, const ScaledQuery& query, int axis, double tmax, double toi_width);
 
+// The same with a separation (min_distance > 0, `separation` in the scaled
+// frame): the first time in [0, tmax] the primitives come within it, when
+// the projection along `axis` keeps distances (every point shares that
+// coordinate). Certain outcomes are proven: a hit by a time where a vertex
+// lies certainly within the separation of the other primitive's segment or
+// point (or the primitives meet), a miss by excluding every time; the TOI
+// is bracketed to toi_width. Not certain: a tangential approach, a segment
+// shrinking to a point, or signs too close to call.
+PlanarOutcome solve_planar_within(PlanarShape shape, const ScaledQuery& query, int axis, double separation,
+                                  double tmax, double toi_width);
+
 }  // namespace batchccd::reference

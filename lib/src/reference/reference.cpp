@@ -74,6 +74,12 @@ void settle_exactly(Kind kind, const Query& query, const Options& options, const
   evaluation.result = outcome.hit ? QueryResult{true, outcome.toi, Status::ok} : QueryResult{};
 }
 
+// Every point has the same coordinate `axis`: the projection along it keeps distances.
+bool shares_coordinate(const Query& query, int axis) {
+  return std::all_of(query.points.begin(), query.points.end(),
+                     [&](const Vec3& point) { return point[axis] == query.points[0][axis]; });
+}
+
 // Planar motion (docs/design.md §5a): all eight points in one plane, where
 // the coplanarity cubic vanishes and says nothing. Decided in the plane;
 // what its signs cannot settle, exactly. False when the motion is not
@@ -91,6 +97,23 @@ bool decide_in_plane(Kind kind, const Query& query, const ScaledQuery& scaled, c
   } else if (outcome.hit) {
     evaluation.result = {true, outcome.toi, Status::ok};
   }
+  return true;
+}
+
+// Motion in an axis plane with a separation: decided there when its
+// search is certain (docs/design.md §5a); false otherwise, for the search
+// over (t, u, v).
+bool decide_within_in_plane(Kind kind, const Query& query, const ScaledQuery& scaled, const Options& options,
+                            Decider decider, Evaluation& evaluation) {
+  const std::optional<int> axis = exact::exact_plane_axis(query);
+  if (!axis || !shares_coordinate(query, *axis)) return false;
+  const double separation = to_scaled_length(scaled, options.min_distance);
+  const double toi_width =
+      decider == Decider::exact ? kExactToiWidth : std::max(0x1p-45, options.toi_tolerance);
+  const PlanarOutcome outcome =
+      solve_planar_within(planar_shape(kind, query), scaled, *axis, separation, options.tmax, toi_width);
+  if (!outcome.certain) return false;
+  if (outcome.hit) evaluation.result = {true, outcome.toi, Status::ok};
   return true;
 }
 
@@ -131,7 +154,8 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, const
   if (options.min_distance > 0) {
     // Coincident points are within any separation: a hit at 0.
     if (scaled.coincident) evaluation.result = {true, 0.0, Status::ok};
-    else evaluate_within_distance(scaled, kind, options, decider, evaluation);
+    else if (decider == Decider::fast || !lab.planar_path || !decide_within_in_plane(kind, query, scaled, options, decider, evaluation))
+      evaluate_within_distance(scaled, kind, options, decider, evaluation);
     return evaluation;
   }
   if (scaled.coincident) {  // all four points are one point throughout
