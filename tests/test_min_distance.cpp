@@ -477,3 +477,140 @@ TEST(SharedMinDistanceData, CertifiedModesMatchEveryLabel) {
 
 }  // namespace
 }  // namespace batchccd
+
+namespace batchccd {
+namespace {
+
+// A point against a segment or a point in 3D is decided by its
+// vertex-segment conditions (docs/design.md §5a): at a separation, every
+// answer held to exact labels and to the search over (t, u, v) in exact mode
+// (the same decisions, TOIs within 2^-40); at separation 0, its misses to
+// the exact stage. Nearly planar motion (heights within 2^-6) is where that
+// search got lost.
+TEST(PointSearch, AgreesWithExactLabelsAndTheGenericSearch) {
+  lab::Settings generic;
+  generic.point_search = false;
+  std::mt19937_64 random(53);
+  std::uniform_int_distribution<int> coordinate(-(1 << 16), 1 << 16);
+  const auto dyadic = [&](int bits) { return std::ldexp(static_cast<double>(coordinate(random)), -16 - bits); };
+  int hits = 0, labelled = 0, queries = 0, misses_at_zero = 0;
+  for (Kind kind : {Kind::vertex_edge, Kind::vertex_vertex})
+    for (int i = 0; i < 120; ++i) {
+      const int flat = i % 2 ? 6 : 0;  // every other query nearly planar
+      std::vector<Vec3> start, end;
+      for (int k = 0; k < points_per_time(kind); ++k) {
+        start.emplace_back(dyadic(0), dyadic(0), dyadic(flat));
+        end.push_back(start.back() + Vec3(dyadic(1), dyadic(1), dyadic(flat + 1)));
+      }
+      // The point ends near the other primitive (within about 0.1 of a
+      // point of it): a good part come within the separations below.
+      const Vec3 target = kind == Kind::vertex_edge ? 0.5 * (end[1] + end[2]) + (dyadic(1) + 0.5) * (end[2] - end[1])
+                                                    : end[1];
+      end[0] = target + Vec3(dyadic(4), dyadic(4), dyadic(flat + 4));
+      const Query query = make_query(kind, start, end);
+      for (double separation : {0.0, 0x1p-6, 0.125}) {
+        SCOPED_TRACE(::testing::Message() << to_string(kind) << " query " << i << " D " << separation << " "
+                                          << ::testing::PrintToString(query.points));
+        ++queries;
+        Options options;
+        options.mode = Mode::exact;
+        options.min_distance = separation;
+        const QueryResult exact = query_ccd(kind, query, options);
+        const QueryResult searched = lab::query_ccd(kind, query, options, generic);
+        ASSERT_EQ(exact.hit, searched.hit);
+        if (exact.hit) EXPECT_NEAR(exact.toi, searched.toi, 2 * 0x1p-40);
+        options.mode = Mode::conservative;
+        const QueryResult conservative = query_ccd(kind, query, options);
+        ASSERT_EQ(conservative.hit, exact.hit);
+        if (exact.hit) {
+          EXPECT_LE(conservative.toi, exact.toi + 2 * 0x1p-40);
+          EXPECT_GE(conservative.toi, exact.toi - options.toi_tolerance - 2 * 0x1p-40);
+        }
+        hits += exact.hit;
+        misses_at_zero += separation == 0 && !exact.hit;
+        if (separation == 0) continue;
+        const testing::Labelled truth = testing::label(Kind::edge_edge, query, separation);
+        if (truth.label == testing::Label::unlabelled) continue;
+        ++labelled;
+        ASSERT_EQ(exact.hit, truth.label == testing::Label::hit);
+        if (exact.hit) EXPECT_LE(exact.toi, truth.witness);
+      }
+    }
+  EXPECT_GT(hits, queries / 6);
+  EXPECT_GT(misses_at_zero, 200);
+  EXPECT_GT(labelled, queries * 6 / 10);
+}
+
+// Nearly planar point-edge motion without a separation: the search over
+// (t, u, v) leaves many misses uncertain, which went to the exact stage;
+// the pairs' search proves them (counted: no escalation).
+TEST(PointSearch, ProvesNearlyPlanarMissesWithoutTheExactStage) {
+  std::mt19937_64 random(59);
+  std::uniform_int_distribution<int> coordinate(-(1 << 16), 1 << 16);
+  const auto dyadic = [&](int bits) { return std::ldexp(static_cast<double>(coordinate(random)), -16 - bits); };
+  // As in the 2D point lists of the planar benchmark lifted to 3D: a long
+  // segment, a point near it, motions of a few percent of the segment,
+  // heights within 1 % (drawn at t0 and t1 alike).
+  std::vector<Query> queries;
+  for (int i = 0; i < 2000; ++i) {
+    std::vector<Vec3> start, end;
+    for (int k = 0; k < 3; ++k) start.emplace_back(dyadic(0), dyadic(0), std::fabs(dyadic(6)));
+    start[0].head<2>() = 0.5 * (start[1] + start[2]).head<2>() + Vec3(dyadic(4), dyadic(4), 0).head<2>();
+    for (int k = 0; k < 3; ++k)
+      end.push_back(Vec3(start[k].x() + dyadic(5), start[k].y() + dyadic(5), std::fabs(dyadic(6))));
+    queries.push_back(make_query(Kind::vertex_edge, start, end));
+  }
+  lab::Settings generic;
+  generic.point_search = false;
+  for (Mode mode : {Mode::conservative, Mode::exact}) {
+    Options options;
+    options.mode = mode;
+    BatchResult with_pairs, without;
+    lab::batch_ccd(Kind::vertex_edge, queries, {}, options, {}, with_pairs);
+    lab::batch_ccd(Kind::vertex_edge, queries, {}, options, generic, without);
+    EXPECT_GT(without.counters.exact_escalations, 20) << to_string(mode);
+    EXPECT_LE(with_pairs.counters.exact_escalations, without.counters.hits) << to_string(mode);
+    EXPECT_EQ(with_pairs.counters.hits, without.counters.hits);
+    for (std::size_t i = 0; i < queries.size(); ++i) EXPECT_EQ(with_pairs.results[i].hit, without.results[i].hit);
+  }
+}
+
+// Known times in 3D: a point falling past a tilted segment, and two points.
+TEST(PointSearch, KnownTimes) {
+  Options options;
+  options.mode = Mode::exact;
+  options.min_distance = 0.25;
+  // The segment from (0, 0, 0) to (1, 1, 0); the point falls along z at
+  // (0.5, 0.5): its distance |z| = 1 - 2t reaches 0.25 at t = 3/8.
+  const QueryResult falling = vertex_edge_ccd({0.5, 0.5, 1}, {0, 0, 0}, {1, 1, 0}, {0.5, 0.5, -1}, {0, 0, 0},
+                                              {1, 1, 0}, options);
+  ASSERT_TRUE(falling.hit);
+  EXPECT_LE(falling.toi, 0.375);
+  EXPECT_GE(falling.toi, 0.375 - 0x1p-40);
+  // Points 4t apart along a diagonal direction of length 3 (2, 1, 2):
+  // |q - p| = 3 (1 - t) reaches 0.25 at t = 11/12.
+  const QueryResult points = vertex_vertex_ccd({0, 0, 0}, {2, 1, 2}, {0, 0, 0}, {0, 0, 0}, options);
+  ASSERT_TRUE(points.hit);
+  EXPECT_LE(points.toi, 11.0 / 12);
+  EXPECT_GE(points.toi, 11.0 / 12 - 0x1p-40);
+  // At separation 0 a point through the segment: a contact at t = 1/2,
+  // which only the exact stage certifies; passing 2^-20 beside it: a miss.
+  options.min_distance = 0;
+  const QueryResult through = vertex_edge_ccd({0.5, 0.5, 1}, {0, 0, 0}, {1, 1, 0}, {0.5, 0.5, -1}, {0, 0, 0},
+                                              {1, 1, 0}, options);
+  ASSERT_TRUE(through.hit);
+  EXPECT_LE(through.toi, 0.5);
+  EXPECT_GE(through.toi, 0.5 - 0x1p-40);
+  // Reaching the segment's end exactly at t = 1, in nearly planar motion:
+  // the search over (t, u, v) stays uncertain, the exact stage decides.
+  const QueryResult reaching = vertex_edge_ccd({2, 1, 0x1p-10}, {0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {0, 0, 0},
+                                               {1, 0, 0}, options);
+  ASSERT_TRUE(reaching.hit);
+  EXPECT_EQ(reaching.toi, 1.0);
+  EXPECT_FALSE(vertex_edge_ccd({0.5, 0.5, 1}, {0, 0, 0}, {1, 1, 0}, {0.5, 0.5 + 0x1p-19, -1}, {0, 0, 0},
+                               {1, 1, 0}, options)
+                   .hit);
+}
+
+}  // namespace
+}  // namespace batchccd

@@ -55,6 +55,8 @@
 //   the step before the first contact within the tolerance.
 // - max_iterations: the solver's box budget (Options::max_iterations); a
 //   query that exhausts it is reported as a contact, never missed. -1: none.
+//   Point kinds and motion in an axis plane are decided first by a bounded
+//   search of their own, which it does not limit.
 // - Tight Inclusion's no_zero_toi may shrink min_distance itself to get a
 //   toi above 0; here the separation stays the caller's (above).
 //

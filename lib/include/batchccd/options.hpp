@@ -125,7 +125,10 @@ struct Options {
   // on one query before giving up; the query is then reported as a hit at
   // the earliest time not yet excluded and counted in Counters::undecided.
   // Also a cap on exact_stage_iterations. Zero or negative: the search gives
-  // up at the first box it examines.
+  // up at the first box it examines. Motion in an axis plane and point kinds
+  // are first decided by a search of their own over time intervals
+  // (docs/design.md §5a), bounded without it; only what that leaves open
+  // comes to the box search.
   std::int64_t max_iterations = 1 << 20;
   // Exact and conservative modes: boxes the certified solver may examine on
   // one query before the query goes to exact arithmetic (no answer is ever

@@ -56,6 +56,11 @@ struct Settings {
   // Planar motion decided in its plane (docs/design.md §5a); false sends it
   // down the generic path, where the exact stage decides it.
   bool planar_path = true;
+  // A point against a segment or a point in 3D decided by its vertex-segment
+  // conditions (docs/design.md §5a): at a separation first, without one
+  // to prove the misses the search over (t, u, v) leaves uncertain. false:
+  // that search alone.
+  bool point_search = true;
   // The exact stage tries floating-point expansions before GMP integers
   // (docs/design.md §6a); false: integers alone. Decisions are the same.
   bool expansion_stage = true;

@@ -20,27 +20,60 @@ constexpr int kIntervalBudget = 512;
 struct Point2 {
   Ball x, y;
 };
+struct Point3 {
+  Ball x, y, z;
+};
 
 Point2 operator-(const Point2& a, const Point2& b) { return {a.x - b.x, a.y - b.y}; }
+Point3 operator-(const Point3& a, const Point3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 
 // a x b, the z component of the 3D cross product.
 Ball cross(const Point2& a, const Point2& b) { return a.x * b.y - a.y * b.x; }
+Point3 cross(const Point3& a, const Point3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
 
-// The projected query: x1 at the origin, x2..x4 moving from [0] to [1].
-struct PlanarMotion {
-  std::array<std::array<Point2, 2>, 3> relative;
+Ball dot(const Point2& a, const Point2& b) { return a.x * b.x + a.y * b.y; }
+Ball dot(const Point3& a, const Point3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+// (1 - t) start + t end, coordinate by coordinate.
+Point2 mix(const Ball& rest, const Ball& time, const Point2& start, const Point2& end) {
+  return {rest * start.x + time * end.x, rest * start.y + time * end.y};
+}
+Point3 mix(const Ball& rest, const Ball& time, const Point3& start, const Point3& end) {
+  return {rest * start.x + time * end.x, rest * start.y + time * end.y, rest * start.z + time * end.z};
+}
+
+// The query in the frame of x1 (at the origin), x2..x4 moving from [0] to
+// [1]: projected on a plane (Point2) or as it is (Point3).
+template <class Point>
+struct Motion {
+  std::array<std::array<Point, 2>, 3> relative;
 
   // x_{i+2}(t) for an exact time t in [0, 1].
-  Point2 at(int i, double t) const {
+  Point at(int i, double t) const {
     if (t == 0) return relative[i][0];  // the step's ends need no arithmetic
     if (t == 1) return relative[i][1];
     const Ball time{t, 0};
-    const Ball rest = Ball{1, 0} - time;
-    const Point2& start = relative[i][0];
-    const Point2& end = relative[i][1];
-    return {rest * start.x + time * end.x, rest * start.y + time * end.y};
+    return mix(Ball{1, 0} - time, time, relative[i][0], relative[i][1]);
   }
 };
+using PlanarMotion = Motion<Point2>;
+
+// A scaled coordinate as a ball: one rounding and the frame's absolute error.
+Ball scaled_ball(const ScaledQuery& query, double value) {
+  return Ball{value, kUnitRoundoff * std::fabs(value) + query.absolute_error};
+}
+
+Motion<Point3> spatial(const ScaledQuery& query) {
+  Motion<Point3> motion;
+  for (int i = 0; i < 3; ++i)
+    for (int tau = 0; tau < 2; ++tau) {
+      const Vec3& v = query.relative[i][tau];
+      motion.relative[i][tau] = {scaled_ball(query, v[0]), scaled_ball(query, v[1]), scaled_ball(query, v[2])};
+    }
+  return motion;
+}
 
 PlanarMotion project(const ScaledQuery& query, int axis) {
   const int first = (axis + 1) % 3, second = (axis + 2) % 3;
@@ -48,15 +81,10 @@ PlanarMotion project(const ScaledQuery& query, int axis) {
   for (int i = 0; i < 3; ++i)
     for (int tau = 0; tau < 2; ++tau) {
       const Vec3& v = query.relative[i][tau];
-      const auto ball = [&](double value) {
-        return Ball{value, kUnitRoundoff * std::fabs(value) + query.absolute_error};
-      };
-      motion.relative[i][tau] = {ball(v[first]), ball(v[second])};
+      motion.relative[i][tau] = {scaled_ball(query, v[first]), scaled_ball(query, v[second])};
     }
   return motion;
 }
-
-Ball dot(const Point2& a, const Point2& b) { return a.x * b.x + a.y * b.y; }
 
 // The contact conditions are signs of products of two vectors spanned by
 // the points (x1 = origin, a = x2, b = x3, c = x4 relative to it): cross
@@ -358,6 +386,29 @@ Quartic times(const Quadratic& u, const Quadratic& v) {
 // A quadratic as the quartic it is: times the constant 1.
 Quartic elevated(const Quadratic& q) { return times(q, Quadratic{{1, 0}, {2, 0}, {1, 0}}); }
 
+// u(t).v(t) over an interval, u and v linear with values u0, v0 at its
+// start and u1, v1 at its end (Quadratic's scaled Bernstein form).
+template <class Point>
+Quadratic dot_over(const Point& u0, const Point& v0, const Point& u1, const Point& v1) {
+  return {dot(u0, v0), dot(u0, v1) + dot(u1, v0), dot(u1, v1)};
+}
+
+// |u(t) x v(t)|^2 over an interval, as dot_over.
+Quartic squared_cross_over(const Point2& u0, const Point2& v0, const Point2& u1, const Point2& v1) {
+  const Quadratic c{cross(u0, v0), cross(u0, v1) + cross(u1, v0), cross(u1, v1)};
+  return times(c, c);
+}
+Quartic squared_cross_over(const Point3& u0, const Point3& v0, const Point3& u1, const Point3& v1) {
+  const Point3 start = cross(u0, v0), end = cross(u1, v1), middle_a = cross(u0, v1), middle_b = cross(u1, v0);
+  Quartic sum;
+  for (Ball Point3::*axis : {&Point3::x, &Point3::y, &Point3::z}) {
+    const Quadratic c{start.*axis, middle_a.*axis + middle_b.*axis, end.*axis};
+    const Quartic square = times(c, c);
+    for (int k = 0; k < 5; ++k) sum[k] = sum[k] + square[k];
+  }
+  return sum;
+}
+
 // A condition "f(t) >= 0" over an interval: f's scaled Bernstein
 // coefficients (3 of a quadratic, 5 of a quartic).
 struct Condition {
@@ -415,7 +466,8 @@ struct Condition {
 
 // Planar motion with a separation d (min_distance > 0), in a plane the
 // projection maps isometrically (an axis plane: a coordinate all points
-// share). The primitives come within d when they meet (PlanarSearch) or
+// share); or, in 3D, a point against a segment or a point, at any d >= 0.
+// The primitives come within d when they meet (PlanarSearch) or
 // when a vertex of one comes within d of a segment of the other: of two
 // disjoint convex polygons (points and segments included) the closest pair
 // is a vertex and an edge. A point p and a segment [A, B] are within d when
@@ -426,10 +478,14 @@ struct Condition {
 // start is certain when one of these holds there with certainty; an
 // interval is excluded when each fails throughout; where a single
 // condition is left to change sign, its root is bracketed.
-class PlanarDistanceSearch {
+template <class Point>
+class DistanceSearch {
  public:
-  PlanarDistanceSearch(PlanarShape shape, const PlanarMotion& motion, double separation, double toi_width)
-      : shape_(shape), motion_(motion), meeting_(shape, motion, toi_width), toi_width_(toi_width),
+  // `meeting`: the search for the primitives meeting (VF and EE in a
+  // plane), nullptr where the pairs cover it (a point against the rest).
+  DistanceSearch(PlanarShape shape, const Motion<Point>& motion, const PlanarSearch* meeting, double separation,
+                 double toi_width)
+      : shape_(shape), motion_(motion), meeting_(meeting), toi_width_(toi_width),
         squared_separation_(Ball{separation, 0} * Ball{separation, 0}) {}
 
   PlanarOutcome run(double tmax) const {
@@ -467,8 +523,8 @@ class PlanarDistanceSearch {
     return 0;
   }
 
-  std::array<Point2, 4> points_at(double t) const {
-    return {Point2{}, motion_.at(0, t), motion_.at(1, t), motion_.at(2, t)};
+  std::array<Point, 4> points_at(double t) const {
+    return {Point{}, motion_.at(0, t), motion_.at(1, t), motion_.at(2, t)};
   }
 
   // A pair's conditions over [start, end] (s and e: the points at its
@@ -476,7 +532,7 @@ class PlanarDistanceSearch {
   // d of A, 1 of B, 2 and 3 beyond neither end, 4 within d of the line.
   class PairConditions {
    public:
-    PairConditions(const Pair& pair, const std::array<Point2, 4>& s, const std::array<Point2, 4>& e,
+    PairConditions(const Pair& pair, const std::array<Point, 4>& s, const std::array<Point, 4>& e,
                    const Ball& squared_separation)
         : pair_(pair), s_(s), e_(e), squared_separation_(squared_separation) {}
 
@@ -492,12 +548,12 @@ class PlanarDistanceSearch {
     const Quadratic& length() const { return length_; }
 
    private:
-    Quadratic product_over(int from, int to, int from2, int to2, bool is_dot) const {
-      return quadratic(Factor{s_[to] - s_[from], s_[to2] - s_[from2], is_dot},
-                       Factor{e_[to] - e_[from], e_[to2] - e_[from2], is_dot});
+    // (x_to - x_from).(x_to2 - x_from2) over the interval.
+    Quadratic dot_of(int from, int to, int from2, int to2) const {
+      return dot_over(s_[to] - s_[from], s_[to2] - s_[from2], e_[to] - e_[from], e_[to2] - e_[from2]);
     }
     Quadratic within(int end) const {  // d^2 - |p - end|^2
-      const Quadratic distance = product_over(end, pair_.point, end, pair_.point, true);
+      const Quadratic distance = dot_of(end, pair_.point, end, pair_.point);
       const Ball& d2 = squared_separation_;
       return {d2 - distance.start, (d2 + d2) - distance.middle, d2 - distance.end};
     }
@@ -506,12 +562,12 @@ class PlanarDistanceSearch {
       switch (k) {
         case 0: return Condition::of(within(a));
         case 1: return Condition::of(within(b));
-        case 2: return Condition::of(product_over(a, p, a, b, true));
-        case 3: return Condition::of(product_over(b, p, b, a, true));
+        case 2: return Condition::of(dot_of(a, p, a, b));
+        case 3: return Condition::of(dot_of(b, p, b, a));
         default: {
-          length_ = product_over(a, b, a, b, true);
-          const Quadratic cross = product_over(a, b, a, p, false);
-          const Quartic on_line = times(cross, cross), reach = elevated(length_);
+          length_ = dot_of(a, b, a, b);
+          const Quartic on_line = squared_cross_over(s_[b] - s_[a], s_[p] - s_[a], e_[b] - e_[a], e_[p] - e_[a]);
+          const Quartic reach = elevated(length_);
           Quartic f;
           for (int i = 0; i < 5; ++i) f[i] = squared_separation_ * reach[i] - on_line[i];
           return Condition::of(f);
@@ -520,8 +576,8 @@ class PlanarDistanceSearch {
     }
 
     Pair pair_;
-    const std::array<Point2, 4>& s_;
-    const std::array<Point2, 4>& e_;
+    const std::array<Point, 4>& s_;
+    const std::array<Point, 4>& e_;
     const Ball& squared_separation_;
     std::array<Condition, kConditionsPerPair> f_;
     Quadratic length_;
@@ -538,11 +594,11 @@ class PlanarDistanceSearch {
     // Meeting (distance 0): VF inside, EE crossing. A point's contacts with
     // a segment or a point are within every d: the pairs cover them.
     Step meeting;
-    if (shape_ == PlanarShape::triangle_vertex || shape_ == PlanarShape::segments) {
-      meeting = meeting_.examine(start, end);
+    if (meeting_ != nullptr) {
+      meeting = meeting_->examine(start, end);
       if (meeting.outcome && meeting.outcome->toi == start) return meeting;  // at the start: the first
     }
-    const std::array<Point2, 4> s = points_at(start), e = points_at(end);
+    const std::array<Point, 4> s = points_at(start), e = points_at(end);
     std::array<Pair, kMostPairs> pair;
     const int count = pairs(pair);
     int open = meeting.excluded() ? 0 : 1;  // what may hold somewhere in the interval
@@ -581,7 +637,7 @@ class PlanarDistanceSearch {
       const int k = rising->condition;
       const double t = start + PairConditions(p, s, e, squared_separation_).f(k).root_estimate() * (end - start);
       const auto at = [&](double time) {
-        const std::array<Point2, 4> x = points_at(time);
+        const std::array<Point, 4> x = points_at(time);
         return PairConditions(p, x, x, squared_separation_).f(k).first();
       };
       if (auto bracket = bracket_root(at, t, start, end, toi_width_)) return {bracket, false};
@@ -594,8 +650,8 @@ class PlanarDistanceSearch {
   };
 
   PlanarShape shape_;
-  const PlanarMotion& motion_;
-  PlanarSearch meeting_;
+  const Motion<Point>& motion_;
+  const PlanarSearch* meeting_;
   double toi_width_;
   Ball squared_separation_;
 };
@@ -611,7 +667,15 @@ PlanarOutcome solve_planar(PlanarShape shape, const ScaledQuery& query, int axis
 PlanarOutcome solve_planar_within(PlanarShape shape, const ScaledQuery& query, int axis, double separation,
                                   double tmax, double toi_width) {
   const PlanarMotion motion = project(query, axis);
-  return PlanarDistanceSearch(shape, motion, separation, toi_width).run(tmax);
+  const bool meets = shape == PlanarShape::triangle_vertex || shape == PlanarShape::segments;
+  const PlanarSearch meeting(shape, motion, toi_width);
+  return DistanceSearch<Point2>(shape, motion, meets ? &meeting : nullptr, separation, toi_width).run(tmax);
+}
+
+PlanarOutcome solve_point_within(PlanarShape shape, const ScaledQuery& query, double separation, double tmax,
+                                 double toi_width) {
+  const Motion<Point3> motion = spatial(query);
+  return DistanceSearch<Point3>(shape, motion, nullptr, separation, toi_width).run(tmax);
 }
 
 }  // namespace batchccd::reference

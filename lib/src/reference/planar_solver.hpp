@@ -52,4 +52,12 @@ PlanarOutcome solve_planar(PlanarShape shape, const ScaledQuery& query, int axis
 PlanarOutcome solve_planar_within(PlanarShape shape, const ScaledQuery& query, int axis, double separation,
                                   double tmax, double toi_width);
 
+// The same search in 3D for a point against a segment or a point
+// (vertex_segment, segment_vertex, vertices), where the pairs say all, at
+// any separation >= 0: at 0 it can only prove misses (a contact is an
+// equality no sign certifies), which it does where the search over
+// (t, u, v) gets lost (nearly planar motion).
+PlanarOutcome solve_point_within(PlanarShape shape, const ScaledQuery& query, double separation, double tmax,
+                                 double toi_width);
+
 }  // namespace batchccd::reference

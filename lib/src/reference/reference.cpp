@@ -100,18 +100,29 @@ bool decide_in_plane(Kind kind, const Query& query, const ScaledQuery& scaled, c
   return true;
 }
 
-// Motion in an axis plane with a separation: decided there when its
-// search is certain (docs/design.md §5a); false otherwise, for the search
-// over (t, u, v).
-bool decide_within_in_plane(Kind kind, const Query& query, const ScaledQuery& scaled, const Options& options,
-                            Decider decider, Evaluation& evaluation) {
-  const std::optional<int> axis = exact::exact_plane_axis(query);
-  if (!axis || !shares_coordinate(query, *axis)) return false;
+// A point against a segment or a point (a zero-length edge is a point).
+bool is_point_shape(PlanarShape shape) {
+  return shape == PlanarShape::vertex_segment || shape == PlanarShape::segment_vertex ||
+         shape == PlanarShape::vertices;
+}
+
+// With a separation, where the closest pair is always a vertex and a
+// segment (docs/design.md §5a): motion in an axis plane, decided there, and
+// a point against a segment or a point in 3D. True when that search is
+// certain (the answer is in `evaluation`); false for the search over
+// (t, u, v).
+bool decide_within_by_pairs(Kind kind, const Query& query, const ScaledQuery& scaled, const Options& options,
+                            const lab::Settings& lab, Decider decider, Evaluation& evaluation) {
+  const PlanarShape shape = planar_shape(kind, query);
   const double separation = to_scaled_length(scaled, options.min_distance);
   const double toi_width =
       decider == Decider::exact ? kExactToiWidth : std::max(0x1p-45, options.toi_tolerance);
-  const PlanarOutcome outcome =
-      solve_planar_within(planar_shape(kind, query), scaled, *axis, separation, options.tmax, toi_width);
+  PlanarOutcome outcome;
+  const std::optional<int> axis = lab.planar_path ? exact::exact_plane_axis(query) : std::nullopt;
+  if (axis && shares_coordinate(query, *axis))
+    outcome = solve_planar_within(shape, scaled, *axis, separation, options.tmax, toi_width);
+  else if (lab.point_search && is_point_shape(shape))
+    outcome = solve_point_within(shape, scaled, separation, options.tmax, toi_width);
   if (!outcome.certain) return false;
   if (outcome.hit) evaluation.result = {true, outcome.toi, Status::ok};
   return true;
@@ -128,6 +139,14 @@ bool misses_in_projection(Kind kind, const Query& query, const ScaledQuery& scal
   int axis = 0;
   normals.maxCoeff(&axis);
   const PlanarOutcome outcome = solve_planar(planar_shape(kind, query), scaled, axis, tmax, 1);
+  return outcome.certain && !outcome.hit;
+}
+
+// A point against a segment or a point that certainly never touches in [0, tmax].
+bool proves_point_miss(Kind kind, const Query& query, const ScaledQuery& scaled, double tmax) {
+  const PlanarShape shape = planar_shape(kind, query);
+  if (!is_point_shape(shape)) return false;
+  const PlanarOutcome outcome = solve_point_within(shape, scaled, 0, tmax, 1);
   return outcome.certain && !outcome.hit;
 }
 
@@ -154,7 +173,7 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, const
   if (options.min_distance > 0) {
     // Coincident points are within any separation: a hit at 0.
     if (scaled.coincident) evaluation.result = {true, 0.0, Status::ok};
-    else if (decider == Decider::fast || !lab.planar_path || !decide_within_in_plane(kind, query, scaled, options, decider, evaluation))
+    else if (decider == Decider::fast || !decide_within_by_pairs(kind, query, scaled, options, lab, decider, evaluation))
       evaluate_within_distance(scaled, kind, options, decider, evaluation);
     return evaluation;
   }
@@ -183,6 +202,11 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, const
   // projection onto the plane often proves a miss (docs/design.md §5a).
   if (!outcome.certain && (exact || conservative) && lab.planar_path &&
       misses_in_projection(kind, query, scaled, options.tmax))
+    return evaluation;
+  // A point against a segment or a point: the pairs' search proves misses
+  // (docs/design.md §5a), where the coplanarity cubic, identically zero,
+  // could not.
+  if (!outcome.certain && (exact || conservative) && lab.point_search && proves_point_miss(kind, query, scaled, options.tmax))
     return evaluation;
   if (!outcome.certain && (exact || (conservative && !outcome.within_tolerance))) {
     settle_exactly(kind, query, options, lab, evaluation);
