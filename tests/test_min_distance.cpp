@@ -579,34 +579,27 @@ TEST(PointSearch, ProvesNearlyPlanarMissesWithoutTheExactStage) {
 TEST(PointSearch, KnownTimes) {
   Options options;
   options.mode = Mode::exact;
+  const auto expect_toi = [&](const QueryResult& result, double toi) {
+    ASSERT_TRUE(result.hit) << toi;
+    EXPECT_LE(result.toi, toi);
+    EXPECT_GE(result.toi, toi - 0x1p-40);
+  };
   options.min_distance = 0.25;
   // The segment from (0, 0, 0) to (1, 1, 0); the point falls along z at
   // (0.5, 0.5): its distance |z| = 1 - 2t reaches 0.25 at t = 3/8.
-  const QueryResult falling = vertex_edge_ccd({0.5, 0.5, 1}, {0, 0, 0}, {1, 1, 0}, {0.5, 0.5, -1}, {0, 0, 0},
-                                              {1, 1, 0}, options);
-  ASSERT_TRUE(falling.hit);
-  EXPECT_LE(falling.toi, 0.375);
-  EXPECT_GE(falling.toi, 0.375 - 0x1p-40);
+  expect_toi(vertex_edge_ccd({0.5, 0.5, 1}, {0, 0, 0}, {1, 1, 0}, {0.5, 0.5, -1}, {0, 0, 0}, {1, 1, 0}, options),
+             0.375);
   // Points 4t apart along a diagonal direction of length 3 (2, 1, 2):
   // |q - p| = 3 (1 - t) reaches 0.25 at t = 11/12.
-  const QueryResult points = vertex_vertex_ccd({0, 0, 0}, {2, 1, 2}, {0, 0, 0}, {0, 0, 0}, options);
-  ASSERT_TRUE(points.hit);
-  EXPECT_LE(points.toi, 11.0 / 12);
-  EXPECT_GE(points.toi, 11.0 / 12 - 0x1p-40);
-  // At separation 0 a point through the segment: a contact at t = 1/2,
-  // which only the exact stage certifies; passing 2^-20 beside it: a miss.
+  expect_toi(vertex_vertex_ccd({0, 0, 0}, {2, 1, 2}, {0, 0, 0}, {0, 0, 0}, options), 11.0 / 12);
+  // At separation 0 a point through the segment: a contact at t = 1/2;
+  // reaching the segment's end exactly at t = 1 in nearly planar motion
+  // (the box search stays uncertain, the exact stage decides); passing
+  // 2^-20 beside it: a miss.
   options.min_distance = 0;
-  const QueryResult through = vertex_edge_ccd({0.5, 0.5, 1}, {0, 0, 0}, {1, 1, 0}, {0.5, 0.5, -1}, {0, 0, 0},
-                                              {1, 1, 0}, options);
-  ASSERT_TRUE(through.hit);
-  EXPECT_LE(through.toi, 0.5);
-  EXPECT_GE(through.toi, 0.5 - 0x1p-40);
-  // Reaching the segment's end exactly at t = 1, in nearly planar motion:
-  // the search over (t, u, v) stays uncertain, the exact stage decides.
-  const QueryResult reaching = vertex_edge_ccd({2, 1, 0x1p-10}, {0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {0, 0, 0},
-                                               {1, 0, 0}, options);
-  ASSERT_TRUE(reaching.hit);
-  EXPECT_EQ(reaching.toi, 1.0);
+  expect_toi(vertex_edge_ccd({0.5, 0.5, 1}, {0, 0, 0}, {1, 1, 0}, {0.5, 0.5, -1}, {0, 0, 0}, {1, 1, 0}, options),
+             0.5);
+  expect_toi(vertex_edge_ccd({2, 1, 0x1p-10}, {0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {0, 0, 0}, {1, 0, 0}, options), 1.0);
   EXPECT_FALSE(vertex_edge_ccd({0.5, 0.5, 1}, {0, 0, 0}, {1, 1, 0}, {0.5, 0.5 + 0x1p-19, -1}, {0, 0, 0},
                                {1, 1, 0}, options)
                    .hit);

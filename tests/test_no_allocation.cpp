@@ -237,9 +237,11 @@ TEST(NoAllocation, MeshCallsOfEveryKindAndOption) {
     }
 }
 
-TEST(NoAllocation, RawCallsOfEveryKindAndOption) {
+// Raw calls of every kind and option on `queries_of(kind)` (3D or 2D queries).
+template <class QueriesOf>
+void expect_raw_calls_allocate_nothing(const QueriesOf& queries_of, const std::string& label) {
   for (const Kind kind : {Kind::vertex_face, Kind::edge_edge, Kind::vertex_edge, Kind::vertex_vertex}) {
-    const std::vector<Query> queries = frame().queries(kind);
+    const auto queries = queries_of(kind);
     const std::vector<double>& own = frame().separations[static_cast<int>(kind)];
     ASSERT_EQ(queries.size(), own.size());
     for (const auto& [name, options] : option_sets())
@@ -248,37 +250,31 @@ TEST(NoAllocation, RawCallsOfEveryKindAndOption) {
             [&](int threads, BatchResult& out) {
               Options with = options;
               with.threads = threads;
-              batch_ccd(kind, queries, each ? std::span<const double>(own) : std::span<const double>{}, with, out);
+              batch_ccd(kind, std::span(queries), each ? std::span<const double>(own) : std::span<const double>{},
+                        with, out);
             },
-            options.threads,
-            std::string("batch_ccd ") + to_string(kind) + ", " + name + (each ? ", a separation per query" : ""));
+            options.threads, label + " " + to_string(kind) + ", " + name + (each ? ", a separation per query" : ""));
       }
   }
 }
 
+TEST(NoAllocation, RawCallsOfEveryKindAndOption) {
+  expect_raw_calls_allocate_nothing([](Kind kind) { return frame().queries(kind); }, "batch_ccd");
+}
+
 // 2D queries are lifted into storage the thread keeps: none after the first call.
 TEST(NoAllocation, RawCallsIn2D) {
-  for (const Kind kind : {Kind::vertex_face, Kind::edge_edge, Kind::vertex_edge, Kind::vertex_vertex}) {
-    std::vector<Query2D> queries;
-    for (const Query& query : frame().queries(kind)) {
-      Query2D flat;
-      for (int k = 0; k < 8; ++k) flat.points[k] = query.points[k].head<2>();
-      queries.push_back(flat);
-    }
-    const std::vector<double>& own = frame().separations[static_cast<int>(kind)];
-    for (const auto& [name, options] : option_sets())
-      for (bool each : {false, true}) {
-        expect_no_allocation_after_warm_up(
-            [&](int threads, BatchResult& out) {
-              Options with = options;
-              with.threads = threads;
-              batch_ccd(kind, std::span<const Query2D>(queries),
-                        each ? std::span<const double>(own) : std::span<const double>{}, with, out);
-            },
-            options.threads,
-            std::string("batch_ccd 2D ") + to_string(kind) + ", " + name + (each ? ", a separation per query" : ""));
-      }
-  }
+  expect_raw_calls_allocate_nothing(
+      [](Kind kind) {
+        std::vector<Query2D> queries;
+        for (const Query& query : frame().queries(kind)) {
+          Query2D flat;
+          for (int k = 0; k < 8; ++k) flat.points[k] = query.points[k].head<2>();
+          queries.push_back(flat);
+        }
+        return queries;
+      },
+      "batch_ccd 2D");
 }
 
 TEST(NoAllocation, CollisionFreeStepsize) {
