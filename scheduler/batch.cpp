@@ -563,6 +563,8 @@ double ipc::collision_free_stepsize(const MeshView& mesh, const CandidateLists& 
   filter_mesh(mesh, candidates, {}, lanes, {}, [&](FilteredMesh& lists, Partials&) {
     const auto decide_survivors = [&](const auto& source, Kind kind, const std::vector<std::size_t>& survivors) {
       for_each_survivor(survivors, [&](std::size_t i) {
+        // A step of 0 is the least there is: no survivor can change it.
+        if (!(window.earliest() > 0)) return;
         const double tmax = ipc_window_tmax(window.earliest(), conservative_rescaling);
         if (double toi = 1; rules::decide(kind, simd::query_at(source, i), toi, min_distance, tmax, tolerance,
                                           max_iterations, conservative_rescaling))

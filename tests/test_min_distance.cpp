@@ -325,6 +325,57 @@ TEST(MinDistance, AgreesWithExactDistancesAtSampledTimes) {
   EXPECT_GT(misses, 60);
 }
 
+// Pairs sliding past each other near the separation s (the survivors the
+// solver clears along the closest direction, docs/design.md §11): the lower
+// primitive near z = 0 with small tilts, the upper one between s/2 and 3s
+// above it, both moving far across it and slowly along z, with the axes
+// permuted. Exact distances at 257 times: a sample within s must give a
+// hit no later than it. A step along the closest direction that went past
+// the time its gap reaches s (the plain-double reach not certified, or
+// taken 1.5 times) fails here.
+TEST(MinDistance, SlidingPairsAgreeWithExactDistancesAtSampledTimes) {
+  std::mt19937_64 random(20261127);
+  const auto dyadic = [&](int low, int high, int denominator) {
+    return static_cast<double>(std::uniform_int_distribution<int>(low, high)(random)) / denominator;
+  };
+  const double separation = 0.0625;
+  const Rational separation2 = Rational(separation) * Rational(separation);
+  int hits = 0, misses = 0;
+  for (const Kind kind : kKinds)
+    for (int n = 0; n < 150; ++n) {
+      const int count = points_per_time(kind);
+      // Kind's layout: the upper primitive first (VF: the vertex, then the
+      // triangle; edge-edge and the point kinds: the first edge or point).
+      const int upper = kind == Kind::vertex_face ? 1 : count / 2;
+      const int axis = n % 3;
+      std::vector<Vec3> t0, t1;
+      for (int k = 0; k < count; ++k) {
+        const bool above = k < upper;
+        const auto place = [&](std::vector<Vec3>& at) {
+          const double height = above ? dyadic(32, 192, 1024) : dyadic(-16, 16, 1024);
+          Vec3 p(dyadic(-1024, 1024, 1024), dyadic(-1024, 1024, 1024), height);
+          at.push_back(Vec3(p[(3 - axis) % 3], p[(4 - axis) % 3], p[(5 - axis) % 3]));
+        };
+        place(t0);
+        place(t1);
+      }
+      const Query q = make_query(kind, t0, t1);
+      int first_sample = -1;
+      for (int k = 0; k <= 256 && first_sample < 0; ++k)
+        if (squared_distance_at(kind, q, Rational(k, 256)) <= separation2) first_sample = k;
+      for (const Mode mode : kCertified) {
+        const QueryResult result = query_ccd(kind, q, with(mode, separation));
+        if (first_sample >= 0) {
+          EXPECT_TRUE(result.hit) << to_string(kind) << " " << n << " " << to_string(mode);
+          EXPECT_LE(result.toi, first_sample / 256.0) << to_string(kind) << " " << n << " " << to_string(mode);
+        }
+        (result.hit ? hits : misses) += 1;
+      }
+    }
+  EXPECT_GT(hits, 50);
+  EXPECT_GT(misses, 500);
+}
+
 TEST(MinDistance, Properties) {
   RandomQueries generator;
   for (const Kind kind : kKinds)

@@ -26,7 +26,9 @@
 // survivor whose step counts (below the earliest so far) gets the step it
 // gets over [0, 1] (tests/test_shrinking_window.cpp), so the call returns
 // the minimum of the per-candidate answers whichever order threads find
-// them in (docs/design.md §12).
+// them in (docs/design.md §12). Once a step of 0 is found (a pair within
+// min_distance at the start, or a coordinate not finite) the survivors left
+// are not asked: nothing lowers 0, so only the work done depends on order.
 //
 // Bad input: std::invalid_argument naming the argument, as ipc.hpp's calls
 // and mesh_ccd (batch.hpp) refuse it, before anything is evaluated. A NaN

@@ -247,10 +247,28 @@ class InclusionSolver {
   // primitives sliding past each other, which this clears in a few
   // halvings where boxes of (t, u, v) take hundreds.
   bool separated_along_closest(const Interval& time, const Endpoints& ends) const {
-    std::array<V3, 3> middle;
-    for (int i = 0; i < 3; ++i) middle[i] = interpolate(position_[i][0], position_[i][1], time.middle());
-    const auto [u, v] = closest_parameters(middle);
-    const V3 n = weighted_sum(weights(kind_, u, v), middle);  // F: VF towards the vertex, EE towards edge a
+    const std::optional<V3> n = closest_direction(time.middle());
+    return n && separated_along(*n, ends);
+  }
+
+  // F at the primitives' closest parameters at time t, found in plain double
+  // (any direction serves separated_along): none when it vanishes.
+  std::optional<V3> closest_direction(double t) const {
+    std::array<V3, 3> at_t;
+    for (int i = 0; i < 3; ++i) at_t[i] = interpolate(position_[i][0], position_[i][1], t);
+    const auto [u, v] = closest_parameters(at_t);
+    const V3 n = weighted_sum(weights(kind_, u, v), at_t);  // VF: towards the vertex; EE: towards edge a
+    const double length2 = dot(n, n);
+    if (!(length2 > 0) || !std::isfinite(length2)) return std::nullopt;
+    return n;
+  }
+
+  // Whether the gap along n between the two primitives exceeds min_distance
+  // |n| at both ends of the interval `ends` holds, so (the gap being concave
+  // in t) throughout it. Points of the side n points to ("upper") and of
+  // the other: VF the vertex x4 over the triangle x1 = 0, x2, x3; EE edge a
+  // (0, x2) over edge b (x3, x4).
+  bool separated_along(const V3& n, const Endpoints& ends) const {
     const double length = std::sqrt(dot(n, n)) * (1 + 8 * kUnitRoundoff);
     if (!(length > 0) || !std::isfinite(length)) return false;
     const V3 magnitude = absolute(n);
@@ -260,9 +278,6 @@ class InclusionSolver {
     // scaled frame's absolute error in each coordinate.
     const double floor = settings_.certified ? weight * (absolute_error_ + 0x1p-1073) + kUnderflowFloor : 0;
     const double relative = settings_.certified ? 8 * kUnitRoundoff : 0;
-    // Points of the side n points to ("upper") and of the other: VF the
-    // vertex x4 over the triangle x1 = 0, x2, x3; EE edge a (0, x2) over
-    // edge b (x3, x4).
     const bool vertex_face = kind_ == Kind::vertex_face;
     for (int end = 0; end < 2; ++end) {
       double upper_lowest = vertex_face ? std::numeric_limits<double>::infinity() : 0.0;
@@ -280,6 +295,46 @@ class InclusionSolver {
     return true;
   }
 
+  // How far from t (on the 2^-45 grid) the closest direction at t keeps
+  // the primitives apart: along a fixed n each point's projection moves
+  // linearly, so the gap between an upper and a lower point reaches
+  // min_distance |n| at a time found in plain double; a little before the
+  // earliest of those, separated_along certifies the interval (and the
+  // step stops at `until`), or t is returned. Where the primitives slide past each other
+  // the motion along n is a small part of m, and this step is that much
+  // longer than conservative advancement's.
+  double cleared_along_closest(double t, double until) const {
+    constexpr double grid = 0x1p45;
+    if (std::floor(t * grid) / grid != t) return t;  // off the grid: interpolation not bounded
+    const std::optional<V3> n = closest_direction(t);
+    if (!n) return t;
+    const double separation = settings_.min_distance * std::sqrt(dot(*n, *n));
+    const bool vertex_face = kind_ == Kind::vertex_face;
+    // Projections at t and their rates (x1, the origin, stays at 0).
+    double at[4] = {0, 0, 0, 0}, rate[4] = {0, 0, 0, 0};
+    for (int i = 0; i < 3; ++i) {
+      at[i + 1] = dot(*n, interpolate(position_[i][0], position_[i][1], t));
+      rate[i + 1] = dot(*n, position_[i][1]) - dot(*n, position_[i][0]);
+    }
+    // Points 0..3 are x1..x4: VF upper {3}, lower {0, 1, 2}; EE upper {0, 1}, lower {2, 3}.
+    double reach = std::numeric_limits<double>::infinity();
+    for (int upper = 0; upper < 4; ++upper)
+      for (int lower = 0; lower < 4; ++lower) {
+        const bool pair = vertex_face ? upper == 3 && lower < 3 : upper < 2 && lower >= 2;
+        if (!pair) continue;
+        const double gap = at[upper] - at[lower] - separation, closing = rate[lower] - rate[upper];
+        if (!(gap > 0)) return t;
+        if (closing > 0) reach = std::min(reach, t + gap / closing);
+      }
+    // 1/16 short of the plain-double reach, for separated_along's margins.
+    // Certified up to `end` whatever `until`, which only caps the step: the
+    // steps towards a contact are the same for every tmax beyond it, as
+    // conservative advancement's are (docs/design.md §12).
+    const double end = std::min(1.0, t + std::floor((reach - t) * 0.9375 * grid) / grid);
+    if (!(end > t)) return t;
+    return separated_along(*n, endpoints(Interval{t, end})) ? std::min(end, until) : t;
+  }
+
   // Whether a witness stands at one of the times toi_tolerance, twice that,
   // four times that, ... after `start`, up to tmax.
   bool witness_after(double start) const {
@@ -294,7 +349,9 @@ class InclusionSolver {
 
   // Conservative advancement (docs/design.md §11): the distance changes by
   // at most m (the largest relative displacement) per unit of time, so at a
-  // distance d > s at time t no contact comes before t + (d - s) / m. Steps
+  // distance d > s at time t no contact comes before t + (d - s) / m; along
+  // the closest direction often much later (cleared_along_closest), and a
+  // step takes the longer of the two. Steps
   // from `from` towards `until` while they get anywhere, on a 2^-45 grid
   // (dyadic times keep the interpolation's error bound), and records how far
   // the times are free of contact. Once its steps get shorter than
@@ -308,6 +365,13 @@ class InclusionSolver {
     constexpr double shrink = SeparationErrors::shrink, grid = 0x1p45;
     double t = from;
     for (int step = 0; step < kSteps && t < until; ++step) {
+      // Along the closest direction a step often clears all the way (and
+      // then t itself holds no contact).
+      const double cleared = cleared_along_closest(t, until);
+      if (cleared >= until) {
+        t = until;
+        break;
+      }
       Vector3<double> at_t[3][2];
       for (int i = 0; i < 3; ++i) at_t[i][0] = at_t[i][1] = interpolate(position_[i][0], position_[i][1], t);
       const double distance = std::sqrt(distance2_at(kind_, at_t, 0, error.relative, error.floor)) * shrink;
@@ -317,7 +381,7 @@ class InclusionSolver {
         return witnessed_at(t);
       }
       // Whole grid steps: t is on the grid, so the sum is exact.
-      const double step_length = std::floor(gap / motion_ * shrink * grid) / grid;
+      const double step_length = std::max(std::floor(gap / motion_ * shrink * grid) / grid, cleared - t);
       const double next = std::min(t + step_length, until);
       if (step_length < settings_.toi_tolerance) {
         const double ahead = std::min(t + std::floor(settings_.toi_tolerance * grid) / grid, until);
