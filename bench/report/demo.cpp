@@ -30,7 +30,7 @@ using cli::write_file_atomically;
 
 // The demo's default sizes: the cloth's steps from just before its first
 // contact (step 73) through the fold, about 4 M candidates each. The whole
-// demo costs about 55 CPU seconds (README, "Build and test").
+// demo costs about 55 CPU seconds (README, "The two commands").
 constexpr int kClothResolution = 128;
 constexpr int kClothSteps = 100;
 constexpr int kClothFirstFrame = 68;
