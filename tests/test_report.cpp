@@ -183,6 +183,10 @@ TEST_F(ReportTest, DemoPrintsTheTableAndWritesReportCsvAndPlot) {
   EXPECT_TRUE(result.err.empty()) << "progress must stay off a non-terminal: " << result.err;
   for (const char* section : {"candidates/s", "What a call pays for", "Stiff and extreme"})
     EXPECT_NE(result.out.find(section), std::string::npos) << section;
+  // The tables say what they count: the cost table's need_toi row and the
+  // stiff and extreme suite's columns.
+  for (const char* note : {"need_toi = false changes only", "truth wrong a/b", "undecided: queries"})
+    EXPECT_NE(result.out.find(note), std::string::npos) << note;
   const bool gnuplot = batchccd::bench::find_gnuplot().has_value();
   EXPECT_EQ(read_file(path("out/report.txt")) + "wrote out/report.txt, out/methods.csv, " +
                 (gnuplot ? "out/plot.png, " : "") + "out/plot.gp\n" +
@@ -241,6 +245,14 @@ TEST_F(ReportPlot, GnuplotDrawsTheCsv) {
              "total,fast,0.1,10,100,0,0,0,3,1,1e-9,1e-9\n");
   write_file(directory / "plot.gp", batchccd::bench::plot_script("a 'title'", "methods.csv", "plot.png",
                                                                      {"exact", "cubic", "fast"}));
+  EXPECT_NO_THROW(batchccd::bench::run_gnuplot(*gnuplot, directory, "plot.gp"));
+  EXPECT_TRUE(is_png(directory / "plot.png"));
+  // Nothing wrong and no TOI error anywhere: every axis still has a range.
+  fs::remove(directory / "plot.png");
+  write_file(directory / "methods.csv",
+             "input,method,seconds,candidates,candidates_per_second,culled,cull_ratio,false_negatives,"
+             "false_positives,toi_compared,toi_error_max,toi_error_mean\n"
+             "total,exact,0.5,10,20,9,0.9,0,0,1,0,0\n");
   EXPECT_NO_THROW(batchccd::bench::run_gnuplot(*gnuplot, directory, "plot.gp"));
   EXPECT_TRUE(is_png(directory / "plot.png"));
   write_file(directory / "broken.gp", "plot nonsense(\n");

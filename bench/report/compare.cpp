@@ -107,21 +107,22 @@ std::vector<Method> compared_methods() {
 std::string_view name_of(Method method) { return entry(method).name; }
 std::string_view description_of(Method method) { return entry(method).description; }
 
-double fastest_of(int runs, const std::function<void()>& work) {
+double fastest_of(const Timing& timing, const std::function<void()>& work) {
   double fastest = 0;
-  for (int k = 0; k < std::max(runs, 1); ++k) {
+  for (int k = 0; k < std::max(timing.runs, 1); ++k) {
     const auto start = std::chrono::steady_clock::now();
     work();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     fastest = k == 0 ? seconds : std::min(fastest, seconds);
+    if (seconds >= timing.repeat_below_seconds) break;
   }
   return fastest;
 }
 
-MethodRun run_method(Method method, const Workload& workload, int threads, int runs) {
+MethodRun run_method(Method method, const Workload& workload, int threads, const Timing& timing) {
   MethodRun run;
   std::vector<Hit> hits;
-  run.seconds = fastest_of(runs, [&] {
+  run.seconds = fastest_of(timing, [&] {
     if (method == Method::fcl) {
       hits = run_fcl(workload, threads);
     } else {

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -34,14 +35,20 @@ struct MethodRun {
   std::int64_t culled = 0;  // candidates the lane filters removed (0 without filters)
 };
 
-// Seconds of the fastest of `runs` (at least 1) calls of `work`: a busy
-// machine only ever adds time.
-double fastest_of(int runs, const std::function<void()>& work);
+// How often a call is timed: the fastest of `runs` (at least 1) calls, a busy
+// machine only ever adding time; but a call that took `repeat_below_seconds`
+// or longer is not repeated (a moment's disturbance is a small share of it).
+struct Timing {
+  int runs = 1;
+  double repeat_below_seconds = std::numeric_limits<double>::infinity();
+};
 
-// Runs `method` on every candidate with `threads` workers (0: all), `runs`
-// times: the time is the fastest run's (fastest_of), the answers the last
-// run's.
-MethodRun run_method(Method method, const Workload& workload, int threads, int runs = 1);
+// Seconds of the fastest call of `work`, timed as `timing` says.
+double fastest_of(const Timing& timing, const std::function<void()>& work);
+
+// Runs `method` on every candidate with `threads` workers (0: all), timed as
+// `timing` says (fastest_of); the answers are the last run's.
+MethodRun run_method(Method method, const Workload& workload, int threads, const Timing& timing = {});
 
 // A method's figures, summed over the workloads added.
 struct MethodTally {

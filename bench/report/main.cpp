@@ -38,8 +38,8 @@ int main_of(int argc, char** argv) {
       "and FCL (when built with it). Prints, per method, run time, candidates per second, "
       "speed-up against cubic, cull ratio, false negatives and positives, and TOI error, all "
       "against exact mode; then what each part of a call costs, and each mode and baseline on the "
-      "stiff and extreme suite. Writes report.txt, methods.csv, plot.gp and plot.png (gnuplot). About 35 s "
-      "on 2 cores.");
+      "stiff and extreme suite. Writes report.txt, methods.csv, plot.gp and plot.png (gnuplot). About 55 "
+      "CPU seconds.");
   demo_command->add_option("--scene", scene,
                            "cloth: a sheet draping, folding and twisting onto itself, 12 steps; "
                            "rigid: thin bodies moving far within one step")

@@ -33,6 +33,19 @@ std::string read_all(const fs::path& file) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// A panel's plot command: each method's marker at (run time, y), its name
+// on the line name_line(i) picks. Every row gives a label, empty but for the
+// method's total: gnuplot 5.4 crashes on labels that all lie off the plot.
+std::string points_against_time(std::string_view y) {
+  const std::string each = "for [i = 1 : words(methods)] data skip 1 using ";
+  const std::string is_total = "is_total(word(methods, i))";
+  return "plot " + each + "(row(word(methods, i), $3)):(" + std::string(y) + ") \\\n" +
+         "       with points pt marker(i) ps 2.2 lw 2 lc rgb colour(i) notitle, \\\n" +
+         "     " + each + "(" + is_total + " ? $3 : time_low):(" + std::string(y) + "):(" + is_total +
+         " ? word(methods, i) : '') \\\n" +
+         "       with labels center offset 0, name_line(i) textcolor rgb colour(i) notitle\n";
+}
+
 }  // namespace
 
 std::optional<fs::path> find_gnuplot() {
@@ -57,50 +70,62 @@ std::string plot_script(std::string_view title, const fs::path& csv, const fs::p
   s << "# Draws " << csv.string() << " (batchccd_report's CSV) into " << png.string()
     << ": gnuplot plot.gp\n"
     << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
-    << "  set terminal pngcairo size 1400,620 font 'sans,11'\n"
+    << "  set terminal pngcairo size 1500,560 font 'sans,11'\n"
     << "} else {\n"
-    << "  set terminal png size 1400,620\n"
+    << "  set terminal png size 1500,560\n"
     << "}\n"
     << "set output " << gnuplot_string(png.string()) << "\n"
     << "set datafile separator comma\n"
     << "data = " << gnuplot_string(csv.string()) << "\n"
     << "methods = " << gnuplot_string(names) << "\n"
-    << "# One colour and open marker per method, later ones smaller: equal points stay visible.\n"
+    << "# One colour and open marker per method, all of one size. Each point carries\n"
+    << "# its method's name, the first three methods' above it, the next three's below,\n"
+    << "# each on a line of its own: the names of methods on one point (exact,\n"
+    << "# conservative and fast, often) stay apart.\n"
     << "colours = '#000000 #d62728 #1f77b4 #2ca02c #ff7f0e #9467bd #8c564b #e377c2'\n"
     << "colour(i) = word(colours, (i - 1) % 8 + 1)\n"
     << "marker(i) = word('6 4 8 10 12 14 1 2', (i - 1) % 8 + 1) + 0\n"
-    << "size(i) = 3.2 - 0.4 * ((i - 1) % 6)\n"
-    << "row(m, x) = strcol(1) eq 'total' && strcol(2) eq m ? x : NaN\n"
-    << "# Log axes cannot show 0: zeros sit on a row of their own below the decades, ticked 0.\n"
-    << "stats data skip 1 using (strcol(1) eq 'total' && $11 > 0 ? $11 : 1) nooutput\n"
-    << "toi_decade = 10 ** floor(log10(STATS_min))\n"
-    << "toi_zero = toi_decade / 100\n"
-    << "wrong_zero = 0.1\n"
-    << "wrong(fn, fp) = fn + fp > 0 ? fn + fp : wrong_zero\n"
+    << "name_line(i) = ((i - 1) % 6 < 3 ? 1 : -1) * (1.3 + (i - 1) % 3)\n"
+    << "is_total(m) = strcol(1) eq 'total' && strcol(2) eq m\n"
+    << "row(m, x) = is_total(m) ? x : NaN\n"
+    << "total(x) = strcol(1) eq 'total' && x > 0 ? x : NaN\n"
+    << "# Log axes cannot show 0: zeros sit on a row of their own, below a dashed break.\n"
+    << "stats data skip 1 using (total($3)) name 'TIME' nooutput\n"
+    << "stats data skip 1 using (total($8 > $9 ? $8 : $9)) name 'COUNT' nooutput\n"
+    << "stats data skip 1 using (total($11)) name 'TOI' nooutput\n"
+    << "time_low = exists('TIME_min') ? TIME_min / 3 : 0.1\n"
+    << "time_high = exists('TIME_max') ? TIME_max * 3 : 10\n"
+    << "count_zero = 0.1\n"
+    << "count_top = exists('COUNT_max') ? 10 ** (ceil(log10(COUNT_max)) + 1.5) : 10\n"
+    << "count(n) = n > 0 ? n : count_zero\n"
+    << "# TOI errors are fractions of the step: the axis ends just past 1 at most.\n"
+    << "toi_decade = exists('TOI_min') ? 10 ** floor(log10(TOI_min)) : 1e-9\n"
+    << "toi_zero = toi_decade / 10\n"
+    << "toi_top = !exists('TOI_max') ? toi_decade * 100 : TOI_max >= 0.1 ? 1.5 : 10 ** (ceil(log10(TOI_max)) + 1.5)\n"
     << "toi(e) = e > 0 ? e : toi_zero\n"
     << "set logscale xy\n"
     << "set grid\n"
-    << "set key outside right top vertical Left reverse noautotitle\n"
+    << "set format x '10^{%L}'\n"
+    << "set format y '10^{%L}'\n"
+    << "set xrange [time_low : time_high]\n"
     << "set xlabel 'run time [s]'\n"
-    << "set offsets graph 0.1, graph 0.1, graph 0.1, graph 0.05\n"
-    << "set multiplot layout 1,2 title " << gnuplot_string(title) << " noenhanced\n"
-    << "set title 'wrong decisions (false negatives + false positives)'\n"
-    << "set ylabel 'wrong decisions'\n"
+    << "set multiplot layout 1,3 title " << gnuplot_string(title) << " noenhanced\n"
+    << "set ylabel 'candidates'\n"
     << "set ytics 1, 10\n"
-    << "set ytics add ('0' wrong_zero)\n"
-    << "set yrange [wrong_zero / 2 : *]\n"
-    << "set key off\n"
-    << "plot for [i = 1 : words(methods)] data skip 1 using (row(word(methods, i), $3)):(wrong($8, $9)) \\\n"
-    << "     with points pt marker(i) ps size(i) lw 2 lc rgb colour(i)\n"
+    << "set ytics add ('0' count_zero)\n"
+    << "set yrange [count_zero / 30 : count_top]\n"
+    << "set arrow 1 from graph 0, first sqrt(count_zero) to graph 1, first sqrt(count_zero) nohead dt 2 lc rgb '#808080'\n"
+    << "set title 'false negatives (contacts missed)'\n"
+    << points_against_time("count($8)")
+    << "set title 'false positives (reported contacts that are none)'\n"
+    << points_against_time("count($9)")
     << "set title 'largest TOI error against exact mode'\n"
     << "set ylabel 'TOI error (fraction of the step)'\n"
-    << "set format y '10^{%L}'\n"
     << "set ytics toi_decade, 10\n"
     << "set ytics add ('0' toi_zero)\n"
-    << "set yrange [toi_zero / 2 : *]\n"
-    << "set key on\n"
-    << "plot for [i = 1 : words(methods)] data skip 1 using (row(word(methods, i), $3)):(toi($11)) \\\n"
-    << "     with points pt marker(i) ps size(i) lw 2 lc rgb colour(i) title word(methods, i)\n"
+    << "set yrange [toi_zero / 30 : toi_top]\n"
+    << "set arrow 1 from graph 0, first toi_zero * sqrt(10) to graph 1, first toi_zero * sqrt(10) nohead dt 2 lc rgb '#808080'\n"
+    << points_against_time("toi($11)")
     << "unset multiplot\n";
   return s.str();
 }

@@ -7,9 +7,9 @@
 #include <vector>
 
 // The comparison's picture, drawn by gnuplot from the CSV the report writes
-// (comparison_format.hpp): two panels, wrong decisions (false negatives +
-// false positives) and the largest TOI error, each against run time, log
-// axes, one point per method of the CSV's "total" rows, named in the key.
+// (comparison_format.hpp): three panels, false negatives, false positives and
+// the largest TOI error, each against run time, log axes, one point per
+// method of the CSV's "total" rows, each point named beside its marker.
 namespace batchccd::bench {
 
 // The gnuplot executable on PATH; std::nullopt when there is none.
