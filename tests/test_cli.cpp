@@ -187,7 +187,7 @@ TEST_F(CliTest, BadCommandLinesExitTwoPointingToHelp) {
       {"run", "--threads", "-2", "vf/q.csv"},
       {"run", "--threads", "two", "vf/q.csv"},
       {"run", "--threads", "3x", "vf/q.csv"},
-      {"run", "--isa", "neon", "vf/q.csv"},
+      {"run", "--isa", "sve", "vf/q.csv"},
       {"run", "--kind", "xy", "vf/q.csv"},
       {"run", "--json=yes", "vf/q.csv"},
       {"run", "--truth", "t.txt", "vf/q.csv", "vf/q.csv"},
