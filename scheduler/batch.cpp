@@ -1,6 +1,7 @@
 #include "batchccd/batch.hpp"
 #include "batchccd/ipc_stepsize.hpp"
 #include "batchccd/lab.hpp"
+#include "batchccd/names.hpp"
 
 #include <algorithm>
 #include <array>
@@ -287,7 +288,8 @@ Isa resolve_isa(Isa requested) { return simd::filter_kernels(requested).isa; }
 
 std::vector<Isa> available_isas() {
   std::vector<Isa> isas;
-  for (const Isa isa : {Isa::scalar, Isa::sse4, Isa::avx2, Isa::avx512}) {
+  for (const auto& [name, isa] : isa_names()) {  // scalar first, then the vector sets
+    if (isa == Isa::automatic) continue;
     try {
       simd::filter_kernels(isa);
       isas.push_back(isa);

@@ -1,4 +1,6 @@
+#include <algorithm>
 #include <cstdlib>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 
@@ -30,10 +32,26 @@ std::size_t filter_range_scalar(const Source& source, std::size_t begin, std::si
   return kept;
 }
 
-bool processor_has(Isa isa) {
-#ifdef BATCHCCD_PORTABLE_ONLY
-  if (isa != Isa::scalar) return false;  // this build has no vector kernels
+// The kernel tables this build compiled (simd/CMakeLists.txt defines
+// BATCHCCD_KERNELS_<set> for each), best first, the scalar path last.
+const FilterKernels* const kCompiled[] = {
+#ifdef BATCHCCD_KERNELS_AVX512
+    &kAvx512Kernels,
 #endif
+#ifdef BATCHCCD_KERNELS_AVX2
+    &kAvx2Kernels,
+#endif
+#ifdef BATCHCCD_KERNELS_SSE4
+    &kSse4Kernels,
+#endif
+#ifdef BATCHCCD_KERNELS_NEON
+    &kNeonKernels,
+#endif
+    &kScalarKernels,
+};
+
+// Whether the processor runs a set this build compiled.
+bool processor_has(Isa isa) {
   // BATCHCCD_HIDE_ISA=avx2,avx512 hides sets, so the unavailable path is testable anywhere.
   if (const char* hidden = std::getenv("BATCHCCD_HIDE_ISA"); hidden && isa != Isa::scalar &&
       (std::string(",") + hidden + ",").find(std::string(",") + to_string(isa) + ",") != std::string::npos)
@@ -45,6 +63,7 @@ bool processor_has(Isa isa) {
     case Isa::avx2: return available.avx2 && available.fma3_avx2;
     case Isa::avx512:
       return available.avx512f && available.avx512dq && available.avx512bw && available.avx512cd;
+    case Isa::neon: return available.neon64;  // every AArch64 processor
     case Isa::automatic: return true;
   }
   return false;
@@ -57,20 +76,14 @@ const FilterKernels kScalarKernels = {Isa::scalar, &filter_range_scalar<RawQueri
                                       &filter_range_scalar<MeshEdgeEdge>};
 
 const FilterKernels& filter_kernels(Isa isa) {
-  if (isa == Isa::automatic) {
-    for (const FilterKernels* best : {&kAvx512Kernels, &kAvx2Kernels, &kSse4Kernels})
-      if (processor_has(best->isa)) return *best;
-    return kScalarKernels;
-  }
-  if (!processor_has(isa))
-    throw std::invalid_argument(std::string("instruction set ") + to_string(isa) +
-                                " is not supported by this processor");
-  switch (isa) {
-    case Isa::sse4: return kSse4Kernels;
-    case Isa::avx2: return kAvx2Kernels;
-    case Isa::avx512: return kAvx512Kernels;
-    default: return kScalarKernels;
-  }
+  for (const FilterKernels* kernels : kCompiled)
+    if ((isa == Isa::automatic || kernels->isa == isa) && processor_has(kernels->isa)) return *kernels;
+  const bool compiled = std::any_of(std::begin(kCompiled), std::end(kCompiled),
+                                    [isa](const FilterKernels* kernels) { return kernels->isa == isa; });
+  throw std::invalid_argument(std::string("instruction set ") + to_string(isa) +
+                              (compiled ? " is not supported by this processor"
+                                        : " is not in this build (another processor family, or "
+                                          "BATCHCCD_PORTABLE_ONLY)"));
 }
 
 }  // namespace batchccd::simd

@@ -46,10 +46,12 @@ struct FilterKernels {
 // std::invalid_argument when the processor or the build lacks it.
 const FilterKernels& filter_kernels(Isa isa);
 
-// Per instruction set, defined in kernel_*.cpp and dispatch.cpp.
+// Per instruction set, defined in kernel_*.cpp and dispatch.cpp; a build
+// defines only those of its processor family (simd/CMakeLists.txt).
 extern const FilterKernels kScalarKernels;
 extern const FilterKernels kSse4Kernels;
 extern const FilterKernels kAvx2Kernels;
 extern const FilterKernels kAvx512Kernels;
+extern const FilterKernels kNeonKernels;
 
 }  // namespace batchccd::simd

@@ -12,7 +12,14 @@
 #include <limits>
 #include <type_traits>
 
+// The few instructions xsimd does not offer (transposes, lane masks as
+// bits, compress-store, range), per processor family.
+#if defined(__x86_64__) || defined(__i386__)
+#define BATCHCCD_X86_LANES 1
 #include <immintrin.h>
+#elif defined(__aarch64__)
+#include <arm_neon.h>
+#endif
 
 #include <xsimd/xsimd.hpp>
 
@@ -24,9 +31,27 @@
 #include "reference/scaled_query.hpp"
 #include "reference/sign_filter.hpp"
 #include "reference/swept_box_filter.hpp"
+#ifdef BATCHCCD_X86_LANES
 #include "simd/coarse_boxes.hpp"
+#endif
 #include "simd/filter.hpp"
 #include "simd/sources.hpp"
+
+#ifdef __aarch64__
+// The filters' max and min of doubles are a > b ? a : b and a < b ? a : b
+// (reference::max_of, x86's maxpd and minpd). xsimd's on NEON are fmax and
+// fmin, which return a NaN operand and +0 for zeros of either sign; these
+// overloads, preferred to xsimd's templates wherever the filters call max
+// or min on NEON's doubles, make its lanes decide as the reference does.
+namespace xsimd {
+inline batch<double, neon64> max(const batch<double, neon64>& a, const batch<double, neon64>& b) {
+  return vbslq_f64(vcgtq_f64(a, b), a, b);
+}
+inline batch<double, neon64> min(const batch<double, neon64>& a, const batch<double, neon64>& b) {
+  return vbslq_f64(vcltq_f64(a, b), a, b);
+}
+}  // namespace xsimd
+#endif
 
 namespace batchccd::simd {
 
@@ -62,6 +87,12 @@ struct Lanes {
     return {inverse, xsimd::select(subnormal, Double(0x1p64), Double(1.0))};
   }
 };
+
+// Asks for the cache line at `address` (prefetcht0 on x86, prfm pldl1keep
+// on ARM); never a fault, wherever it points.
+[[gnu::always_inline]] inline void prefetch(std::uintptr_t address) {
+  __builtin_prefetch(reinterpret_cast<const void*>(address), 0, 3);
+}
 
 // Which candidate each lane of a group evaluates: group[j] for lane j. A
 // group of consecutive candidates (the first pass's full groups) says so in
@@ -122,7 +153,7 @@ struct Gather {
       const std::uintptr_t ahead =
           reinterpret_cast<std::uintptr_t>(first) + kPrefetchQueries * kQueryDoubles * sizeof(double);
       for (std::size_t line = 0; line < L::size * kQueryDoubles * sizeof(double); line += 64)
-        _mm_prefetch(reinterpret_cast<const char*>(ahead + line), _MM_HINT_T0);
+        prefetch(ahead + line);
     }
     return [first](std::size_t j) { return first + j * kQueryDoubles; };
   }
@@ -244,6 +275,10 @@ struct Gather {
 
   // out[c] lane j = row[j] lane c, for c below the lane count (8, 4 or 2).
   static void transpose(const Double (&row)[L::size], Double* out) {
+#ifdef __aarch64__
+    out[0] = vzip1q_f64(row[0], row[1]);
+    out[1] = vzip2q_f64(row[0], row[1]);
+#else
     if constexpr (std::is_base_of_v<xsimd::avx512f, Arch>) {
       __m512d t[8], u[8];
       for (int i = 0; i < 8; i += 2) {
@@ -270,6 +305,7 @@ struct Gather {
       out[0] = _mm_unpacklo_pd(row[0], row[1]);
       out[1] = _mm_unpackhi_pd(row[0], row[1]);
     }
+#endif
   }
 };
 
@@ -287,6 +323,11 @@ template <std::size_t n, class T, class Op>
 // Bit k set where lane k of the mask is true.
 template <class Arch>
 std::uint32_t lane_bits(const xsimd::batch_bool<double, Arch>& mask) {
+#ifdef __aarch64__
+  // Each lane all ones or all zeros: its top bit, shifted into place.
+  const uint64x2_t top = vshrq_n_u64(mask.data, 63);
+  return static_cast<std::uint32_t>(vgetq_lane_u64(top, 0) | (vgetq_lane_u64(top, 1) << 1));
+#else
   if constexpr (std::is_base_of_v<xsimd::avx512f, Arch>) {
     return static_cast<std::uint32_t>(mask.data);
   } else if constexpr (std::is_base_of_v<xsimd::avx, Arch>) {
@@ -294,25 +335,32 @@ std::uint32_t lane_bits(const xsimd::batch_bool<double, Arch>& mask) {
   } else {
     return static_cast<std::uint32_t>(_mm_movemask_pd(mask.data));
   }
+#endif
 }
 
 // Eight values compressed to those of the set bits of `keep` in a register
 // and stored whole (AVX-512 only): the compress-store to memory is slow on
-// some processors (microcoded on AMD Zen 4).
+// some processors (microcoded on AMD Zen 4). Other sets write one value
+// per set bit (compress).
+#ifdef BATCHCCD_X86_LANES
 template <class Arch, class Values>
 std::size_t store_compressed(std::uint32_t keep, const Values& values, std::uint32_t* out) {
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_maskz_compress_epi32(static_cast<__mmask8>(keep), values));
   return static_cast<std::size_t>(__builtin_popcount(keep));
 }
+#endif
 
 // Writes values[k] for every set bit k of `keep` (k < 8), in order; returns
 // how many. `room`: out has room for all eight, which it may then write (a
 // full group's, where what follows is yet to be written or already read).
 template <class Arch>
-std::size_t compress(std::uint32_t keep, const std::uint32_t* values, std::uint32_t* out, bool room) {
+std::size_t compress(std::uint32_t keep, const std::uint32_t* values, std::uint32_t* out,
+                     [[maybe_unused]] bool room) {
+#ifdef BATCHCCD_X86_LANES
   if constexpr (std::is_base_of_v<xsimd::avx512f, Arch>) {
     if (room) return store_compressed<Arch>(keep, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(values)), out);
   }
+#endif
   std::uint32_t loaded[8];
   std::copy(values, values + 8, loaded);  // out may overlap values
   std::size_t n = 0;
@@ -322,7 +370,8 @@ std::size_t compress(std::uint32_t keep, const std::uint32_t* values, std::uint3
 
 // The same for values first, first + 1, ..., first + 7.
 template <class Arch>
-std::size_t compress(std::uint32_t keep, std::uint32_t first, std::uint32_t* out, bool room) {
+std::size_t compress(std::uint32_t keep, std::uint32_t first, std::uint32_t* out, [[maybe_unused]] bool room) {
+#ifdef BATCHCCD_X86_LANES
   if constexpr (std::is_base_of_v<xsimd::avx512f, Arch>) {
     if (room)
       return store_compressed<Arch>(keep,
@@ -330,6 +379,7 @@ std::size_t compress(std::uint32_t keep, std::uint32_t first, std::uint32_t* out
                                                      _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)),
                                     out);
   }
+#endif
   std::size_t n = 0;
   for (; keep != 0; keep &= keep - 1) out[n++] = first + static_cast<std::uint32_t>(__builtin_ctz(keep));
   return n;
@@ -359,11 +409,15 @@ struct Magnitudes {
   }
   // Of two magnitudes (non-negative values).
   static Double larger(const Double& a, const Double& b) {
+#ifdef BATCHCCD_X86_LANES
     if constexpr (kRange) {
       return _mm512_range_pd(a, b, 0b1011);  // max(|a|, |b|), sign cleared
     } else {
       return larger_or_nan(a, b);
     }
+#else
+    return larger_or_nan(a, b);
+#endif
   }
 
   static Double largest_or_nan(const Vector& v) {
@@ -518,7 +572,7 @@ typename Lanes<Arch>::Double lane_separations(const reference::FilterSettings& s
 }
 
 // Whether the first pass takes the coarse boxes (coarse_boxes.hpp): eight
-// lanes of doubles, sixteen of floats.
+// lanes of doubles, sixteen of floats. x86 only (their code is AVX-512's).
 template <class Arch>
 constexpr bool kCoarseBoxes = std::is_base_of_v<xsimd::avx512dq, Arch>;
 
@@ -807,7 +861,7 @@ template <class Arch, class MeshSource>
   constexpr std::size_t kBytes = Lanes<Arch>::size * sizeof(mesh.pairs[0]);
   const auto ahead = reinterpret_cast<std::uintptr_t>(mesh.pairs + first + kAhead);
   for (std::size_t line = 0; line < kBytes; line += 64)
-    _mm_prefetch(reinterpret_cast<const char*>(ahead + line), _MM_HINT_T0);
+    prefetch(ahead + line);
 }
 
 // The first pass over candidates [begin, end), compacting its survivors:
@@ -832,6 +886,7 @@ std::size_t first_pass(const Source& source, std::size_t begin, std::size_t end,
     kept += compress<Arch>(~culled & ((1u << count) - 1), offset, survivors + kept, count == lanes);
   };
   std::size_t first = begin;
+#ifdef BATCHCCD_X86_LANES
   if constexpr (kPacked<Source> && kCoarseBoxes<Arch>) {
     // Sixteen candidates at a time through the coarse boxes first: a group
     // of eight they settle needs nothing more (coarse_boxes.hpp). They pay
@@ -868,6 +923,7 @@ std::size_t first_pass(const Source& source, std::size_t begin, std::size_t end,
         for (; first + 2 * lanes <= end; first += 2 * lanes) coarse_pair(first);
     }
   }
+#endif
   for (; first < end; first += lanes) {
     const std::size_t count = std::min(end - first, lanes);
     prefetch_candidates<Arch>(source, first);

@@ -22,7 +22,8 @@ namespace {
 
 std::vector<const simd::FilterKernels*> vector_kernels() {
   std::vector<const simd::FilterKernels*> kernels;
-  for (Isa isa : {Isa::sse4, Isa::avx2, Isa::avx512}) {
+  for (const auto& [name, isa] : isa_names()) {  // x86's sets, NEON: what this build and processor run
+    if (isa == Isa::automatic || isa == Isa::scalar) continue;
     try {
       kernels.push_back(&simd::filter_kernels(isa));
     } catch (const std::invalid_argument&) {

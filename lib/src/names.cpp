@@ -16,7 +16,7 @@ constexpr EnumName<lab::Baseline> kBaselines[] = {
     {"none", lab::Baseline::none}, {"fast", lab::Baseline::fast}, {"cubic", lab::Baseline::cubic}};
 constexpr EnumName<Isa> kIsas[] = {{"auto", Isa::automatic}, {"scalar", Isa::scalar},
                                    {"sse4", Isa::sse4},      {"avx2", Isa::avx2},
-                                   {"avx512", Isa::avx512}};
+                                   {"avx512", Isa::avx512},  {"neon", Isa::neon}};
 
 // The table's names are literals: .data() is null-terminated.
 template <class Enum>

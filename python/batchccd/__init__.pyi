@@ -32,7 +32,7 @@ class Options(TypedDict, total=False):
     evaluate_vertex_vertex: bool
     per_candidate_results: bool
     hit_list: bool
-    isa: str  # "auto", "scalar", "sse4", "avx2", "avx512"
+    isa: str  # "auto", "scalar", "sse4", "avx2", "avx512", "neon"
     threads: int
     tolerance: float
     toi_tolerance: float

@@ -20,7 +20,7 @@ struct EnumName {
 // Every value of the enum with its name, in declaration order.
 std::span<const EnumName<Kind>> kind_names();  // vf, ee, ve, vv
 std::span<const EnumName<Mode>> mode_names();  // conservative, exact
-std::span<const EnumName<Isa>> isa_names();    // auto, scalar, sse4, avx2, avx512
+std::span<const EnumName<Isa>> isa_names();    // auto, scalar, sse4, avx2, avx512, neon
 
 // The value a name stands for; std::nullopt for any other text (case matters).
 std::optional<Kind> kind_from_string(std::string_view name);

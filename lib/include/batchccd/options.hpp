@@ -56,7 +56,9 @@ enum class Mode {
 // `automatic` picks the best this processor and build have. A batch call
 // with one that is not available throws std::invalid_argument (resolve_isa,
 // batch.hpp); single-query calls always run the scalar path.
-enum class Isa { automatic, scalar, sse4, avx2, avx512 };
+// sse4, avx2 and avx512 exist in x86-64 builds, neon (64-bit ARM) in
+// AArch64 builds; the scalar path in every build.
+enum class Isa { automatic, scalar, sse4, avx2, avx512, neon };
 
 // Lower-case names as the command-line tool spells them ("conservative",
 // "auto", "avx2", ...); "?" for a value outside the enum. Never null.
