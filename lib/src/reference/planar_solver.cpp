@@ -418,7 +418,6 @@ struct Condition {
   static Condition of(const Quadratic& q) { return {{q.start, q.middle, q.end}, 2}; }
   static Condition of(const Quartic& q) { return {q, 4}; }
   const Ball& first() const { return coefficient[0]; }
-  const Ball& last() const { return coefficient[degree]; }
   // +1 where f is certainly positive over the whole interval, -1 certainly
   // negative, else 0 (Bernstein coefficients bound the polynomial).
   int sign_over() const {
@@ -445,9 +444,11 @@ struct Condition {
   // Its root in (0, 1), estimated in double (the bracket is what is
   // certified): bisection on the sign of de Casteljau's value.
   double root_estimate() const {
-    static constexpr double kScale[5][5] = {{1, 0.5, 1, 0, 0}, {}, {}, {}, {1, 0.25, 1.0 / 6, 0.25, 1}};
+    // The true Bernstein coefficients from the scaled ones, by degree.
+    static constexpr double kQuadratic[5] = {1, 0.5, 1}, kQuartic[5] = {1, 0.25, 1.0 / 6, 0.25, 1};
+    const double* scale = degree == 2 ? kQuadratic : kQuartic;
     double c[5] = {};
-    for (int k = 0; k <= degree; ++k) c[k] = coefficient[k].middle * kScale[degree == 2 ? 0 : 4][k];
+    for (int k = 0; k <= degree; ++k) c[k] = coefficient[k].middle * scale[k];
     const auto at = [&](double s) {
       double b[5];
       std::copy(c, c + degree + 1, b);
@@ -625,7 +626,7 @@ class DistanceSearch {
         if (holds_at_start && (!on_line || c.length().start.certainly_positive()))
           return {PlanarOutcome{true, true, start, start}, false};
         const bool simple = uncertain == 1 && c.f(which).rises_once() && (!on_line || sign_over(c.length()) > 0);
-        rising = ++open == 1 && simple ? std::optional<Uncertain>({i, which}) : std::nullopt;
+        rising = ++open == 1 && simple ? std::optional<Uncertain>({i, which, c.f(which)}) : std::nullopt;
       }
     }
     if (open == 0) return {};
@@ -635,7 +636,7 @@ class DistanceSearch {
       // it on, the clause holds: the first contact.
       const Pair& p = pair[rising->pair];
       const int k = rising->condition;
-      const double t = start + PairConditions(p, s, e, squared_separation_).f(k).root_estimate() * (end - start);
+      const double t = start + rising->f.root_estimate() * (end - start);
       const auto at = [&](double time) {
         const std::array<Point, 4> x = points_at(time);
         return PairConditions(p, x, x, squared_separation_).f(k).first();
@@ -647,6 +648,7 @@ class DistanceSearch {
 
   struct Uncertain {
     int pair, condition;
+    Condition f;  // over the interval
   };
 
   PlanarShape shape_;

@@ -21,6 +21,12 @@ namespace {
 
 const double kExactToiWidth = std::ldexp(1.0, -static_cast<int>(exact::kToiBits));
 
+// The width a certain contact's TOI is located to: 2^-40 in exact mode,
+// toi_tolerance (at least 2^-45, as the solver takes it) otherwise.
+double located_toi_width(const Options& options, Decider decider) {
+  return decider == Decider::exact ? kExactToiWidth : std::max(0x1p-45, options.toi_tolerance);
+}
+
 SolverSettings solver_settings(const Options& options, Decider decider) {
   SolverSettings settings;
   settings.certified = decider != Decider::fast;
@@ -88,8 +94,7 @@ bool decide_in_plane(Kind kind, const Query& query, const ScaledQuery& scaled, c
                      const lab::Settings& lab, Decider decider, Evaluation& evaluation) {
   const std::optional<int> axis = exact::exact_plane_axis(query);
   if (!axis) return false;
-  const double toi_width =
-      decider == Decider::exact ? kExactToiWidth : std::max(0x1p-45, options.toi_tolerance);
+  const double toi_width = located_toi_width(options, decider);
   const PlanarOutcome outcome =
       solve_planar(planar_shape(kind, query), scaled, *axis, options.tmax, toi_width);
   if (!outcome.certain) {
@@ -115,8 +120,7 @@ bool decide_within_by_pairs(Kind kind, const Query& query, const ScaledQuery& sc
                             const lab::Settings& lab, Decider decider, Evaluation& evaluation) {
   const PlanarShape shape = planar_shape(kind, query);
   const double separation = to_scaled_length(scaled, options.min_distance);
-  const double toi_width =
-      decider == Decider::exact ? kExactToiWidth : std::max(0x1p-45, options.toi_tolerance);
+  const double toi_width = located_toi_width(options, decider);
   PlanarOutcome outcome;
   const std::optional<int> axis = lab.planar_path ? exact::exact_plane_axis(query) : std::nullopt;
   if (axis && shares_coordinate(query, *axis))
@@ -214,10 +218,7 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, const
   }
   evaluation.undecided = outcome.undecided;
   if (outcome.hit) evaluation.result = {true, outcome.toi, Status::ok};
-  // The width a certain contact's TOI is to be located to: 2^-40 in exact
-  // mode, toi_tolerance (at least 2^-45, as the solver takes it) in
-  // conservative mode.
-  const double toi_width = exact ? kExactToiWidth : std::max(0x1p-45, options.toi_tolerance);
+  const double toi_width = located_toi_width(options, decider);
   if ((exact || conservative) && outcome.certain && outcome.hit && options.need_toi &&
       outcome.toi_upper - outcome.toi > toi_width) {
     // A certain contact whose cubic's signs got too close to call before
