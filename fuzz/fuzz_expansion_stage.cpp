@@ -13,7 +13,12 @@
 // - the first root of the cubic in [k/8, (k+1)/8], located with
 //   expansions, is within 2^-40 of the integers' and never below k/8.
 //
-// Bytes: flags (kind, placed contact, q, parameter), tmax, scale exponent,
+// With the planar flags, every point's z is replaced by one value per time
+// (z = 0, or a plane moving along z): motion where the coplanarity cubic
+// vanishes and the expansions decide in the plane; jitters may then make it
+// nearly planar.
+//
+// Bytes: flags (kind, placed contact, q, parameter, planar, moving plane), tmax, scale exponent,
 // 24 int8 coordinates (4 points at t0 and t1), then up to 4 jitters of
 // (coordinate index, ulps); short inputs are zero-padded.
 
@@ -52,6 +57,10 @@ Query make_query(const std::array<std::int8_t, kInputBytes>& bytes, Kind kind) {
     const int a0 = kind == Kind::vertex_face ? 1 : 0, a1 = a0 + 1, mover = kind == Kind::vertex_face ? 0 : 2;
     const Vec3 meet_q = (1 - s) * ((q - 1) * points[a0] + points[a0 + 4]) + s * ((q - 1) * points[a1] + points[a1 + 4]);
     points[mover + 4] = meet_q - (q - 1) * points[mover];
+  }
+  if (flags & 0x40) {  // planar motion: z = 0, or (flag 0x80) z = 1/4 at t0 and -3/8 at t1
+    const bool moving = flags & 0x80;
+    for (int i = 0; i < 8; ++i) points[i].z() = moving ? (i < 4 ? 0.25 : -0.375) : 0.0;
   }
   for (std::size_t j = 0; j < kJitters; ++j) {
     const auto index = static_cast<std::uint8_t>(bytes[27 + 2 * j]) % 24;

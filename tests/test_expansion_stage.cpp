@@ -208,7 +208,7 @@ TEST(ExpansionStage, DecidesAsIntegersWithTmaxAndAtEveryScale) {
   EXPECT_GT(tally.hits, 200);
 }
 
-TEST(ExpansionStage, SettlesAGenericCrossingAndAnEdgeContactAndLeavesCoplanarMotionToIntegers) {
+TEST(ExpansionStage, SettlesAGenericCrossingAndAnEdgeContact) {
   // A vertex falling through a triangle's interior at t = 1/2.
   const std::array<Vec3, 4> face{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 0)};
   Query through = make_query({Vec3(0.25, 0.25, 1), face[0], face[1], face[2]},
@@ -226,14 +226,109 @@ TEST(ExpansionStage, SettlesAGenericCrossingAndAnEdgeContactAndLeavesCoplanarMot
   EXPECT_TRUE(at_endpoint->hit);
   EXPECT_LE(at_endpoint->toi, 1.0 / 3);
   EXPECT_GE(at_endpoint->toi, 1.0 / 3 - 0x1p-40);
-  // Motion in the plane z = 0: the cubic vanishes, the stage declines.
-  const Query planar = make_query({Vec3(0.25, 0.25, 0), face[0], face[1], face[2]},
-                                  {Vec3(2, 2, 0), face[0], face[1], face[2]});
-  EXPECT_FALSE(exact::solve_with_expansions(Kind::vertex_face, planar, true, 1.0));
-  // Coordinates spread over more than 2^60 are left to integers too.
+  // Coordinates spread over more than 2^80 are left to integers.
   Query spread = through;
-  spread.points[0].x() = 0x1p-70;
+  spread.points[0].x() = 0x1p-90;
   EXPECT_FALSE(exact::solve_with_expansions(Kind::vertex_face, spread, true, 1.0));
+}
+
+// --- Planar motion (the cubic identically zero) ----------------------------
+
+// Where a plane family puts the grid point (x, y) at time tau: z = 0; the
+// tilted plane z = x + 2y (exact on the grid); z = 1/4 at t0 and -3/8 at t1
+// (a plane moving along its axis: the points of each time share z).
+enum class PlaneFamily { z0, tilted, moving };
+
+Vec3 in_plane(PlaneFamily family, double x, double y, int tau) {
+  if (family == PlaneFamily::tilted) return Vec3(x, y, x + 2 * y);
+  if (family == PlaneFamily::moving) return Vec3(x, y, tau == 0 ? 0.25 : -0.375);
+  return Vec3(x, y, 0);
+}
+
+Query planar_grid_query(PlaneFamily family, std::mt19937_64& random) {
+  std::array<Vec3, 4> start, end;
+  for (int i = 0; i < 4; ++i) {
+    const Vec3 a = grid_point(random), b = grid_point(random);
+    start[i] = in_plane(family, a.x(), a.y(), 0);
+    end[i] = in_plane(family, b.x(), b.y(), 1);
+  }
+  return make_query(start, end);
+}
+
+// In the plane: an exact contact on an edge or at a corner at t = 1/q
+// (boundary_contact's construction, which keeps each time's points in the
+// plane), or the start copied to the end (a static pair).
+Query planar_boundary_contact(Kind kind, PlaneFamily family, std::mt19937_64& random) {
+  std::uniform_int_distribution<int> pick(0, 2);
+  const double s = pick(random) / 2.0, q = std::array{2.0, 3.0, 5.0}[pick(random)];
+  Query query = planar_grid_query(family, random);
+  const int a0 = kind == Kind::vertex_face ? 1 : 0, a1 = a0 + 1;
+  const int mover = kind == Kind::vertex_face ? 0 : 2;
+  const auto& p = query.points;
+  const Vec3 meet_q = (1 - s) * ((q - 1) * p[a0] + p[a0 + 4]) + s * ((q - 1) * p[a1] + p[a1 + 4]);
+  query.points[mover + 4] = meet_q - (q - 1) * p[mover];
+  return query;
+}
+
+TEST(ExpansionStage, DecidesPlanarMotionAsIntegersInAxisTiltedAndMovingPlanes) {
+  std::mt19937_64 random(8);
+  for (const PlaneFamily family : {PlaneFamily::z0, PlaneFamily::tilted, PlaneFamily::moving}) {
+    Tally random_queries, contacts, static_pairs;
+    constexpr int kQueries = 300;
+    for (int trial = 0; trial < kQueries; ++trial)
+      for (const Kind kind : {Kind::vertex_face, Kind::edge_edge}) {
+        expect_as_integers(kind, planar_grid_query(family, random), 1.0, random_queries);
+        const Query contact = planar_boundary_contact(kind, family, random);
+        expect_as_integers(kind, contact, 1.0, contacts);
+        expect_as_integers(kind, contact, 0.25, contacts);
+        Query still = contact;
+        for (int i = 0; i < 4; ++i) still.points[i + 4] = still.points[i];
+        if (family != PlaneFamily::moving) expect_as_integers(kind, still, 1.0, static_pairs);
+      }
+    const int family_index = static_cast<int>(family);
+    // Grid queries are full of exact zeros (contacts on edges, parallel
+    // edges): most are still decided without integers.
+    EXPECT_GT(random_queries.decided, 2 * kQueries * 9 / 10) << family_index;
+    EXPECT_GT(random_queries.hits, 2 * kQueries / 10) << family_index;
+    EXPECT_GT(contacts.decided, 2 * 2 * kQueries * 3 / 4) << family_index;
+    EXPECT_GT(contacts.hits, kQueries) << family_index;
+    std::printf("[ record   ] plane %d: random %d of %d decided (%d hits), contacts %d of %d (%d hits), static %d\n",
+                family_index, random_queries.decided, 2 * kQueries, random_queries.hits, contacts.decided,
+                4 * kQueries, contacts.hits, static_pairs.decided);
+  }
+}
+
+TEST(ExpansionStage, DecidesPlanarContactsAtTheEndsOfTheStepAndLeavesFlatTrianglesToIntegers) {
+  const std::array<Vec3, 3> face{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  // In z = 0, the vertex inside the face at t = 0.
+  const Query inside = make_query({Vec3(0.25, 0.25, 0), face[0], face[1], face[2]},
+                                  {Vec3(2, 2, 0), face[0], face[1], face[2]});
+  const std::optional<ExactOutcome> at_start = exact::solve_with_expansions(Kind::vertex_face, inside, true, 1.0);
+  ASSERT_TRUE(at_start);
+  EXPECT_TRUE(at_start->hit);
+  EXPECT_EQ(at_start->toi, 0.0);
+  // Reaching the hypotenuse exactly at t = 1, and with tmax before that.
+  const Query at_end = make_query({Vec3(2, 2, 0), face[0], face[1], face[2]},
+                                  {Vec3(0.5, 0.5, 0), face[0], face[1], face[2]});
+  const std::optional<ExactOutcome> last = exact::solve_with_expansions(Kind::vertex_face, at_end, true, 1.0);
+  ASSERT_TRUE(last);
+  EXPECT_TRUE(last->hit);
+  EXPECT_EQ(last->toi, 1.0);
+  const std::optional<ExactOutcome> cut = exact::solve_with_expansions(Kind::vertex_face, at_end, true, 0.75);
+  ASSERT_TRUE(cut);
+  EXPECT_FALSE(cut->hit);
+  // A face flat on a line throughout: the rule does not hold there; integers decide.
+  const Query flat = make_query({Vec3(0.5, 0, 0), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)},
+                                {Vec3(0.5, 0, 0), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)});
+  EXPECT_FALSE(exact::solve_with_expansions(Kind::vertex_face, flat, true, 1.0));
+  // Flat for an instant (t = 1/2, the corner (1/2, +-1) crossing the base's
+  // line) with the vertex on that line beyond the base: every orientation
+  // vanishes there, yet nothing touches.
+  const Query flat_once = make_query({Vec3(3, 0, 0), face[0], face[1], Vec3(0.5, 1, 0)},
+                                     {Vec3(3, 0, 0), face[0], face[1], Vec3(0.5, -1, 0)});
+  EXPECT_FALSE(exact::solve_with_integers(Kind::vertex_face, flat_once, true, 1.0).hit);
+  const std::optional<ExactOutcome> never = exact::solve_with_expansions(Kind::vertex_face, flat_once, true, 1.0);
+  if (never) EXPECT_FALSE(never->hit);
 }
 
 TEST(ExpansionStage, LeavesToIntegersWhatWouldUnderflowItsZeroTest) {

@@ -225,6 +225,8 @@ class BoundedExpansion {
   }
 
   friend BoundedExpansion operator+(const BoundedExpansion& e, const BoundedExpansion& f) {
+    if (e.size_ == 0) return f;  // already compressed
+    if (f.size_ == 0) return e;
     Scratch sum;
     add_terms(e.terms_.data(), e.size_, f.terms_.data(), f.size_, sum);
     return compressed(sum);
@@ -240,9 +242,12 @@ class BoundedExpansion {
     scale_terms(e.terms_.data(), e.size_, b, product);
     return compressed(product);
   }
+  // e scaled by each term of the shorter factor, summed.
   friend BoundedExpansion operator*(const BoundedExpansion& e, const BoundedExpansion& f) {
-    BoundedExpansion product;
-    for (std::size_t j = 0; j < f.size_; ++j) product = product + e * f.terms_[j];
+    if (e.size_ < f.size_) return f * e;
+    if (f.size_ == 0) return {};
+    BoundedExpansion product = e * f.terms_[0];
+    for (std::size_t j = 1; j < f.size_; ++j) product = product + e * f.terms_[j];
     return product;
   }
 

@@ -8,6 +8,7 @@
 
 #include "exact/exact_motion.hpp"
 #include "exact/expansion.hpp"
+#include "exact/plane_axis.hpp"
 #include "reference/scaled_query.hpp"
 
 namespace batchccd::exact {
@@ -24,13 +25,13 @@ constexpr int kFinerGridBits[] = {76, 100};
 
 // Why expansions stay exact here (expansion.hpp: no overflow, no
 // underflow). The query is normalized: coordinates below 2 in magnitude,
-// nonzero ones at least 2^-60, so each is a multiple of 2^-112 and so is
+// nonzero ones at least 2^-80, so each is a multiple of 2^-132 and so is
 // every difference. The inside test's polynomials are sums of products of
-// four such differences: coefficients below 2^24 and multiples of 2^-448.
+// four such differences: coefficients below 2^24 and multiples of 2^-528.
 // They are evaluated at times on the 2^-100 grid (degree 4: a factor
 // 2^-400) or subdivided 40 times (degree 3: 2^-120): every term stays a
-// multiple of 2^-848, far above the smallest normal double.
-constexpr int kCoordinateFloor = -60;
+// multiple of 2^-928, above the smallest normal double (2^-1022).
+constexpr int kCoordinateFloor = -80;
 constexpr int kTimeFloor = 100;  // times evaluated exactly lie on the 2^-100 grid
 
 bool on_time_grid(double t) {
@@ -496,10 +497,176 @@ std::optional<bool> touches_at(Kind kind, const Motion<Polynomial4>& motion, con
   return std::nullopt;
 }
 
+// Which side of tmax a root of p lies on: true when after it (then every
+// later root is too); nullopt when tmax is off the time grid and the root's
+// interval straddles it. A root found exactly at tmax becomes exact.
+std::optional<bool> after_tmax(const Polynomial4& p, Root& root, double tmax) {
+  if (root.low >= tmax && !(root.exact && root.low == tmax)) return true;
+  if (root.exact || root.high <= tmax) return false;
+  if (!on_time_grid(tmax)) return std::nullopt;
+  const int sign = p.at(tmax).sign();
+  if (sign == 0) root = {tmax, tmax, true, 0};
+  return sign != 0 && sign == root.sign_after_low;
+}
+
+// Planar motion: the coplanarity cubic identically zero, and the points in
+// a plane the projection along `axis` maps one to one (exact_plane_axis,
+// docs/design.md §5a). There the contact is a sign condition on quadratics
+// in t, orientations w(U, V) = (U x V)[axis] of the moving vectors; with
+// w = w(A, B):
+//   vertex-face: w(C, B), w(A, C) and w minus both (w times the vertex's
+//     barycentric coordinates), no two of strictly opposite signs;
+//   edge-edge: w(C, B) and w - w(C, B), w(C, A) and w - w(C, A) (w times
+//     the edges' parameters), neither pair of strictly opposite signs.
+// Where w != 0 that is the contact exactly. Where w = 0 (a triangle flat on
+// a line, parallel edges) every contact satisfies it but not conversely:
+// such a time is left to the integers. Its truth changes only at roots of
+// its polynomials, and the contact times form a closed set, so the first
+// contact is at 0 or at one of those roots (the candidates).
+class PlanarContact {
+ public:
+  PlanarContact(Kind kind, const Motion<Polynomial4>& v, int axis) : axis_(axis) {
+    area_ = orientation(v[0], v[1]);
+    const Polynomial4 s = orientation(v[2], v[1]);
+    if (kind == Kind::vertex_face) {
+      const Polynomial4 u = orientation(v[0], v[2]);
+      conditions_ = {s, u, area_ - s - u};
+      groups_ = {0, 0, 0};
+    } else {
+      const Polynomial4 u = orientation(v[2], v[0]);
+      conditions_ = {s, area_ - s, u, area_ - u};
+      groups_ = {0, 0, 1, 1};
+    }
+  }
+
+  std::optional<ExactOutcome> solve(bool need_toi, double tmax) {
+    if (area_.degree() < 0) return std::nullopt;  // flat or parallel throughout
+    std::vector<Candidate> candidates{{Root{0, 0, true, 0}, -1}};
+    for (std::size_t k = 0; k < conditions_.size(); ++k)
+      if (!add_roots(conditions_[k], candidates)) return std::nullopt;
+    std::sort(candidates.begin(), candidates.end(),
+              [](const Candidate& a, const Candidate& b) { return a.root.low < b.root.low; });
+    std::optional<double> first;
+    for (Candidate& candidate : candidates) {
+      if (first && candidate.root.low >= *first) break;  // nothing earlier is left
+      const Polynomial4* defining = candidate.defining < 0 ? nullptr : &defining_[candidate.defining];
+      if (defining) {
+        const std::optional<bool> after = after_tmax(*defining, candidate.root, tmax);
+        if (!after) return std::nullopt;
+        if (*after) continue;
+      } else if (candidate.root.low > tmax) {
+        continue;
+      }
+      // No earlier candidate holds, and none later starts below this one.
+      const double lower_bound = candidate.root.low;
+      const std::optional<bool> touches = holds(defining, candidate.root);
+      if (!touches) return std::nullopt;
+      if (!*touches) continue;
+      if (!need_toi) return ExactOutcome{true, lower_bound, false};
+      if (defining) narrow_to_grid(*defining, candidate.root, kGridBits);
+      first = std::min(first.value_or(1.0), candidate.root.low);
+    }
+    if (first) return ExactOutcome{true, *first, false};
+    return ExactOutcome{};
+  }
+
+ private:
+  // A candidate time: a root of defining_[defining], or exact (-1).
+  struct Candidate {
+    Root root;
+    int defining;
+  };
+
+  Polynomial4 orientation(const Vector<Polynomial4>& u, const Vector<Polynomial4>& v) const {
+    const int j = (axis_ + 1) % 3, k = (axis_ + 2) % 3;
+    return u[j] * v[k] - u[k] * v[j];
+  }
+
+  // p's roots in (0, 1], as candidates. A double root (a quadratic touching
+  // zero) is its derivative's root; false where roots cluster closer than
+  // 2^-40 otherwise.
+  bool add_roots(const Polynomial4& p, std::vector<Candidate>& candidates) {
+    if (p.degree() < 1) return true;  // no root, or zero throughout: its sign never changes the truth
+    if (p.at(1.0).is_zero()) candidates.push_back({Root{1, 1, true, 0}, -1});
+    const Polynomial4* defining = &p;
+    std::optional<std::vector<Root>> roots = isolate_cubic_roots(p);
+    Polynomial4 slope;
+    if (!roots && p.degree() == 2 && (p.c[1] * p.c[1] - p.c[0] * p.c[2] * 4.0).is_zero()) {
+      slope.c = {p.c[1], p.c[2] * 2.0};
+      slope.size = 2;
+      defining = &slope;
+      roots = isolate_cubic_roots(slope);
+    }
+    if (!roots) return false;
+    if (roots->empty()) return true;
+    defining_.push_back(*defining);
+    for (const Root& root : *roots) candidates.push_back({root, static_cast<int>(defining_.size()) - 1});
+    return true;
+  }
+
+  // Whether the condition holds at the candidate (a root of `defining`, or
+  // exact); nullopt when signs do not settle it, or w vanishes there.
+  std::optional<bool> holds(const Polynomial4* defining, Root& root) const {
+    std::array<bool, 2> positive{}, negative{};
+    for (std::size_t k = 0; k < conditions_.size(); ++k) {
+      const std::optional<int> sign = sign_at(conditions_[k], defining, root);
+      if (!sign) return std::nullopt;
+      positive[groups_[k]] |= *sign > 0;
+      negative[groups_[k]] |= *sign < 0;
+      if (positive[groups_[k]] && negative[groups_[k]]) return false;
+    }
+    const std::optional<int> area = sign_at(area_, defining, root);
+    if (!area || *area == 0) return std::nullopt;
+    return true;
+  }
+
+  // The sign of q at the root of `defining` (or the exact time), narrowing
+  // the root as far as the sign needs: q's exact value at the interval's
+  // low end against how far q can drift across it; at the doubles' grid,
+  // a zero shared with `defining` (the gcd); nullopt past 2^-100.
+  static std::optional<int> sign_at(const Polynomial4& q, const Polynomial4* defining, Root& root) {
+    if (root.exact || q.degree() < 1) return q.at(root.low_time()).sign();
+    constexpr double kMargin = 1 + 0x1p-30;  // covers the rounding of the bounds themselves
+    double slope = 0;  // |q'| on [0, 1] is at most |c1| + 2|c2| + ...
+    for (int i = 1; i < q.size; ++i) slope += i * std::fabs(q.c[i].estimate());
+    slope *= kMargin;
+    const auto settled = [&]() -> std::optional<int> {
+      const Value value = q.at(root.low_time());
+      if (root.exact || std::fabs(value.estimate()) > root.width() * slope * kMargin) return value.sign();
+      return std::nullopt;
+    };
+    if (const auto sign = settled()) return sign;
+    for (const int bits : {kGridBits, kDoubleGridBits}) {
+      narrow_to_grid(*defining, root, bits);
+      if (const auto sign = settled()) return sign;
+    }
+    try {
+      if (vanishes_at(*defining, q, root) == true) return 0;
+    } catch (const Value::TooLong&) {
+      // unknown: a finer grid may still settle the sign
+    }
+    for (const int bits : kFinerGridBits) {
+      narrow_finer(*defining, root, bits);
+      if (const auto sign = settled()) return sign;
+    }
+    return std::nullopt;
+  }
+
+  int axis_;
+  Polynomial4 area_;
+  std::vector<Polynomial4> conditions_;
+  std::array<int, 4> groups_{};
+  std::vector<Polynomial4> defining_;  // the polynomials whose roots are candidates
+};
+
 std::optional<ExactOutcome> solve(Kind kind, const Query& query, bool need_toi, double tmax) {
   const Motion<Polynomial4> motion = moving_vectors(kind, query);
   const Polynomial4 cubic = coplanarity_cubic(motion);
-  if (cubic.degree() < 0) return std::nullopt;  // coplanar motion: not this stage's
+  if (cubic.degree() < 0) {  // coplanar motion: decided in its plane where one is certified
+    const std::optional<int> axis = exact_plane_axis(query);
+    if (!axis) return std::nullopt;
+    return PlanarContact(kind, motion, *axis).solve(need_toi, tmax);
+  }
   const std::optional<std::vector<Root>> inner = isolate_cubic_roots(cubic);
   if (!inner) return std::nullopt;
   std::vector<Root> candidates;

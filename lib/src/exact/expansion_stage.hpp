@@ -8,13 +8,14 @@
 // The exact stage's first try (docs/design.md §6a): the same decisions and
 // TOIs as exact integers give, computed with floating-point expansions,
 // which are exact too but cost microseconds where GMP costs hundreds. They
-// cover the generic case: the coplanarity cubic not identically zero, its
-// roots in (0, 1) simple and at least 2^-40 apart, and at each root the
-// signs of the inside test's polynomials nonzero, or read exactly where the
-// root is a dyadic of the 2^-40 grid. Anything else (coplanar motion,
-// multiple or clustered roots, a contact exactly on an edge or a corner,
-// coordinates spread over more than 2^60, a tmax off the 2^-100 grid)
-// answers nullopt, and the integers decide.
+// cover the generic case (the coplanarity cubic not identically zero, its
+// roots in (0, 1) at least 2^-40 apart) and planar motion in a plane
+// exact_plane_axis certifies (the orientations' roots likewise apart, or a
+// double root). A contact exactly on an edge or a corner is settled by a
+// zero test. Anything else (other motion with a vanishing cubic, clustered
+// roots, a triangle flat or edges parallel at the contact, coordinates
+// spread over more than 2^80, a tmax off the 2^-100 grid) answers nullopt,
+// and the integers decide.
 namespace batchccd::exact {
 
 // What solve_exactly decides, bit for bit (hit, and the TOI on the same

@@ -14,14 +14,10 @@
 namespace batchccd::exact {
 namespace {
 
-// The axis whose coordinate all eight points share, if any.
+// The axis whose coordinate the points share at each time, if any.
 std::optional<int> shared_coordinate(const Query& query) {
-  for (int axis = 0; axis < 3; ++axis) {
-    const double value = query.points[0][axis];
-    if (std::all_of(query.points.begin(), query.points.end(),
-                    [&](const Vec3& point) { return point[axis] == value; }))
-      return axis;
-  }
+  for (int axis = 0; axis < 3; ++axis)
+    if (shares_coordinate(query, axis)) return axis;
   return std::nullopt;
 }
 
@@ -124,6 +120,16 @@ bool integer_plane(const GridPoints& p, int origin, int far, int third, int axis
 #endif
 
 }  // namespace
+
+bool shares_coordinate(const Query& query, int axis) {
+  const auto shared_at = [&](int first) {
+    const double value = query.points[first][axis];
+    for (int i = first; i < first + 4; ++i)
+      if (query.points[i][axis] != value) return false;
+    return true;
+  };
+  return shared_at(0) && shared_at(4);
+}
 
 std::optional<int> exact_plane_axis(const Query& query) {
   if (const auto axis = shared_coordinate(query)) return axis;

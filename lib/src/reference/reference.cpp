@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <optional>
 
 #include <Eigen/Geometry>
 
 #include "exact/exact_solver.hpp"
+#include "exact/expansion_stage.hpp"
 #include "exact/first_root.hpp"
 #include "exact/plane_axis.hpp"
 #include "reference/cubic_solver.hpp"
@@ -70,20 +73,19 @@ void evaluate_within_distance(const ScaledQuery& scaled, Kind kind, const Option
   if (outcome.hit) evaluation.result = {true, outcome.toi, Status::ok};
 }
 
+// Exact arithmetic decides: floating-point expansions, then integers. Where
+// the expansions cannot, `proves_miss` (a certain test cheaper than the
+// integers, though not than expansions that decide) may settle a miss first.
 void settle_exactly(Kind kind, const Query& query, const Options& options, const lab::Settings& lab,
-                    Evaluation& evaluation) {
+                    Evaluation& evaluation, const std::function<bool()>& proves_miss = {}) {
+  std::optional<exact::ExactOutcome> decided;
+  if (lab.expansion_stage) decided = exact::solve_with_expansions(kind, query, options.need_toi, options.tmax);
+  if (!decided && proves_miss && proves_miss()) return;
   const exact::ExactOutcome outcome =
-      lab.expansion_stage ? exact::solve_exactly(kind, query, options.need_toi, options.tmax)
-                          : exact::solve_with_integers(kind, query, options.need_toi, options.tmax);
+      decided ? *decided : exact::solve_with_integers(kind, query, options.need_toi, options.tmax);
   evaluation.exact_stage = ExactStage::decision;
   evaluation.undecided = outcome.bound_reached;
   evaluation.result = outcome.hit ? QueryResult{true, outcome.toi, Status::ok} : QueryResult{};
-}
-
-// Every point has the same coordinate `axis`: the projection along it keeps distances.
-bool shares_coordinate(const Query& query, int axis) {
-  return std::all_of(query.points.begin(), query.points.end(),
-                     [&](const Vec3& point) { return point[axis] == query.points[0][axis]; });
 }
 
 // Planar motion (docs/design.md §5a): all eight points in one plane, where
@@ -123,7 +125,7 @@ bool decide_within_by_pairs(Kind kind, const Query& query, const ScaledQuery& sc
   const double toi_width = located_toi_width(options, decider);
   PlanarOutcome outcome;
   const std::optional<int> axis = lab.planar_path ? exact::exact_plane_axis(query) : std::nullopt;
-  if (axis && shares_coordinate(query, *axis))
+  if (axis && exact::shares_coordinate(query, *axis))
     outcome = solve_planar_within(shape, scaled, *axis, separation, options.tmax, toi_width);
   else if (lab.point_search && is_point_shape(shape))
     outcome = solve_point_within(shape, scaled, separation, options.tmax, toi_width);
@@ -204,18 +206,21 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, const
   const bool conservative = decider == Decider::conservative;
   // Nearly planar motion is where the search stays uncertain, and where a
   // projection onto the plane often proves a miss (docs/design.md §5a).
-  if (!outcome.certain && (exact || conservative) && lab.planar_path &&
-      misses_in_projection(kind, query, scaled, options.tmax))
-    return evaluation;
+  const auto misses_in_plane = [&] {
+    return lab.planar_path && misses_in_projection(kind, query, scaled, options.tmax);
+  };
   // A point against a segment or a point: the pairs' search proves misses
   // (docs/design.md §5a), where the coplanarity cubic, identically zero,
   // could not.
   if (!outcome.certain && (exact || conservative) && lab.point_search && proves_point_miss(kind, query, scaled, options.tmax))
     return evaluation;
   if (!outcome.certain && (exact || (conservative && !outcome.within_tolerance))) {
-    settle_exactly(kind, query, options, lab, evaluation);
+    settle_exactly(kind, query, options, lab, evaluation, misses_in_plane);
     return evaluation;
   }
+  // A contact within tolerance conservative mode may report: a miss proven
+  // in the plane is still the better answer.
+  if (!outcome.certain && conservative && misses_in_plane()) return evaluation;
   evaluation.undecided = outcome.undecided;
   if (outcome.hit) evaluation.result = {true, outcome.toi, Status::ok};
   const double toi_width = located_toi_width(options, decider);
