@@ -157,24 +157,44 @@ Number coplanarity_cubic(const Motion<Number>& v) {
 }
 
 // The numerators of the contact condition at a root (nonnegative at a
-// contact); `count` of them are in use.
+// contact): vertex-face X, Y, N - X - Y; edge-edge X, N - X, Y, N - Y.
+// Each piece (n, N, X, Y) is formed once, and only when a numerator asked
+// for needs it: in expansions every product is costly, and a root usually
+// needs one or two of them. The motion must outlive this.
 template <class Number>
-struct ContactNumerators {
-  std::array<Number, 4> values;
-  int count = 0;
-};
+class LazyNumerators {
+ public:
+  LazyNumerators(Kind kind, const Motion<Number>& v) : kind_(kind), v_(v) {}
 
-template <class Number>
-ContactNumerators<Number> contact_numerators(Kind kind, const Motion<Number>& v) {
-  const Vector<Number> n = cross(v[0], v[1]);
-  const Number squared = dot(n, n), x = dot(cross(v[2], v[1]), n);
-  if (kind == Kind::vertex_face) {
-    const Number y = dot(cross(v[0], v[2]), n);
-    return {{x, y, squared - x - y}, 3};
+  int count() const { return kind_ == Kind::vertex_face ? 3 : 4; }
+  Number operator[](int k) {
+    if (kind_ == Kind::vertex_face) return k == 0 ? x() : k == 1 ? y() : squared() - x() - y();
+    return k == 0 ? x() : k == 1 ? squared() - x() : k == 2 ? y() : squared() - y();
   }
-  const Number y = dot(cross(v[2], v[0]), n);
-  return {{x, squared - x, y, squared - y}, 4};
-}
+  const Number& squared() {
+    if (!squared_) squared_ = dot(n(), n());
+    return *squared_;
+  }
+
+ private:
+  const Vector<Number>& n() {
+    if (!n_) n_ = cross(v_[0], v_[1]);
+    return *n_;
+  }
+  const Number& x() {
+    if (!x_) x_ = dot(cross(v_[2], v_[1]), n());
+    return *x_;
+  }
+  const Number& y() {
+    if (!y_) y_ = kind_ == Kind::vertex_face ? dot(cross(v_[0], v_[2]), n()) : dot(cross(v_[2], v_[0]), n());
+    return *y_;
+  }
+
+  Kind kind_;
+  const Motion<Number>& v_;
+  std::optional<Vector<Number>> n_;
+  std::optional<Number> squared_, x_, y_;
+};
 
 // P_from - P_to, linear in t.
 Vector<Polynomial4> moving_difference(Kind kind, const Query& query, int from, int to) {
@@ -452,29 +472,32 @@ std::optional<bool> touches_at(Kind kind, const Motion<Polynomial4>& motion, con
   // exact value at the root's fine interval is close enough.
   const double estimate_width = root.fine() ? root.high - root.low : root.width();
   const double exact_width = root.width();
-  const ContactNumerators<Estimate> estimates =
-      contact_numerators(kind, estimated_on(motion, root.low, estimate_width));
-  std::optional<ContactNumerators<Value>> exact;
-  std::optional<ContactNumerators<Polynomial4>> polynomials;
+  const Motion<Estimate> estimated = estimated_on(motion, root.low, estimate_width);
+  LazyNumerators<Estimate> estimates(kind, estimated);
+  std::optional<Motion<Value>> exact_motion;
+  std::optional<LazyNumerators<Value>> exact;
+  const auto exact_numerators = [&]() -> LazyNumerators<Value>& {
+    if (!exact) exact.emplace(kind, exact_motion.emplace(exactly_at(motion, root.low_time())));
+    return *exact;
+  };
+  LazyNumerators<Polynomial4> polynomials(kind, motion);
   const auto zero_at_root = [&](int k) {
     if (!cubic) return false;
     try {
-      if (!polynomials) polynomials = contact_numerators(kind, motion);
-      return vanishes_at(*cubic, polynomials->values[k], root) == true;
+      return vanishes_at(*cubic, polynomials[k], root) == true;
     } catch (const Value::TooLong&) {
       return false;  // unknown: a finer grid may still settle the sign
     }
   };
   std::array<std::optional<int>, 4> signs;
-  for (int k = 0; k < estimates.count; ++k) {
-    const Estimate& estimate = estimates.values[k];
+  for (int k = 0; k < estimates.count(); ++k) {
+    const Estimate estimate = estimates[k];
     const double drift = exact_width * estimate.slope;
     if (!root.fine() && std::fabs(estimate.value) > (estimate.error + drift) * kMargin + 0x1p-1000) {
       signs[k] = estimate.value > 0 ? 1 : -1;
     } else if (root.fine() || root.exact || std::fabs(estimate.value) + estimate.error > drift * kMargin) {
       // The exact value may beat the drift.
-      if (!exact) exact = contact_numerators(kind, exactly_at(motion, root.low_time()));
-      const Value& value = exact->values[k];
+      const Value value = exact_numerators()[k];
       if (root.exact || std::fabs(value.estimate()) > drift * kMargin) signs[k] = value.sign();
     }
     // A negative numerator is nonzero, so n != 0 there, where the test
@@ -482,18 +505,15 @@ std::optional<bool> touches_at(Kind kind, const Motion<Polynomial4>& motion, con
     if (signs[k] && *signs[k] < 0) return false;
   }
   int positive = 0;
-  for (int k = 0; k < estimates.count; ++k) {
+  for (int k = 0; k < estimates.count(); ++k) {
     if (!signs[k] && zero_at_root(k)) signs[k] = 0;
     if (!signs[k]) return std::nullopt;
     positive += *signs[k] > 0;
   }
   if (positive > 0) return true;
   // Every numerator zero: a contact where n != 0.
-  const Motion<Value> at = exactly_at(motion, root.low_time());
-  const Vector<Value> n = cross(at[0], at[1]);
-  if (root.exact) return dot(n, n).sign() > 0 ? std::optional(true) : std::nullopt;
-  if (cubic && vanishes_at(*cubic, dot(cross(motion[0], motion[1]), cross(motion[0], motion[1])), root) == false)
-    return true;
+  if (root.exact) return exact_numerators().squared().sign() > 0 ? std::optional(true) : std::nullopt;
+  if (cubic && vanishes_at(*cubic, polynomials.squared(), root) == false) return true;
   return std::nullopt;
 }
 
