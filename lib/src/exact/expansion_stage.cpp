@@ -561,9 +561,9 @@ class PlanarContact {
 
   std::optional<ExactOutcome> solve(bool need_toi, double tmax) {
     if (area_.degree() < 0) return std::nullopt;  // flat or parallel throughout
-    std::vector<Candidate> candidates{{Root{0, 0, true, 0}, -1}};
-    for (std::size_t k = 0; k < conditions_.size(); ++k)
-      if (!add_roots(conditions_[k], candidates)) return std::nullopt;
+    std::vector<Candidate> candidates{{Root{0, 0, true, 0}, -1, -1}};
+    for (int k = 0; k < static_cast<int>(conditions_.size()); ++k)
+      if (!add_roots(k, candidates)) return std::nullopt;
     std::sort(candidates.begin(), candidates.end(),
               [](const Candidate& a, const Candidate& b) { return a.root.low < b.root.low; });
     std::optional<double> first;
@@ -579,7 +579,7 @@ class PlanarContact {
       }
       // No earlier candidate holds, and none later starts below this one.
       const double lower_bound = candidate.root.low;
-      const std::optional<bool> touches = holds(defining, candidate.root);
+      const std::optional<bool> touches = holds(defining, candidate.root, candidate.source);
       if (!touches) return std::nullopt;
       if (!*touches) continue;
       if (!need_toi) return ExactOutcome{true, lower_bound, false};
@@ -591,10 +591,12 @@ class PlanarContact {
   }
 
  private:
-  // A candidate time: a root of defining_[defining], or exact (-1).
+  // A candidate time: a root of defining_[defining], or exact (-1), where
+  // the condition `source` (if any) vanishes.
   struct Candidate {
     Root root;
     int defining;
+    int source;
   };
 
   Polynomial4 orientation(const Vector<Polynomial4>& u, const Vector<Polynomial4>& v) const {
@@ -605,9 +607,10 @@ class PlanarContact {
   // p's roots in (0, 1], as candidates. A double root (a quadratic touching
   // zero) is its derivative's root; false where roots cluster closer than
   // 2^-40 otherwise.
-  bool add_roots(const Polynomial4& p, std::vector<Candidate>& candidates) {
+  bool add_roots(int source, std::vector<Candidate>& candidates) {
+    const Polynomial4& p = conditions_[source];
     if (p.degree() < 1) return true;  // no root, or zero throughout: its sign never changes the truth
-    if (p.at(1.0).is_zero()) candidates.push_back({Root{1, 1, true, 0}, -1});
+    if (p.at(1.0).is_zero()) candidates.push_back({Root{1, 1, true, 0}, -1, source});
     const Polynomial4* defining = &p;
     std::optional<std::vector<Root>> roots = isolate_cubic_roots(p);
     Polynomial4 slope;
@@ -620,16 +623,17 @@ class PlanarContact {
     if (!roots) return false;
     if (roots->empty()) return true;
     defining_.push_back(*defining);
-    for (const Root& root : *roots) candidates.push_back({root, static_cast<int>(defining_.size()) - 1});
+    for (const Root& root : *roots) candidates.push_back({root, static_cast<int>(defining_.size()) - 1, source});
     return true;
   }
 
   // Whether the condition holds at the candidate (a root of `defining`, or
-  // exact); nullopt when signs do not settle it, or w vanishes there.
-  std::optional<bool> holds(const Polynomial4* defining, Root& root) const {
+  // exact, where condition `source` vanishes); nullopt when signs do not
+  // settle it, or w vanishes there.
+  std::optional<bool> holds(const Polynomial4* defining, Root& root, int source) const {
     std::array<bool, 2> positive{}, negative{};
-    for (std::size_t k = 0; k < conditions_.size(); ++k) {
-      const std::optional<int> sign = sign_at(conditions_[k], defining, root);
+    for (int k = 0; k < static_cast<int>(conditions_.size()); ++k) {
+      const std::optional<int> sign = k == source ? 0 : sign_at(conditions_[k], defining, root);
       if (!sign) return std::nullopt;
       positive[groups_[k]] |= *sign > 0;
       negative[groups_[k]] |= *sign < 0;
