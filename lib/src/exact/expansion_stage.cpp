@@ -660,6 +660,8 @@ class PlanarContact {
       return std::nullopt;
     };
     if (const auto sign = settled()) return sign;
+    if (!root.fine())
+      if (const auto sign = sign_by_remainder(q, *defining, root)) return sign;
     for (const int bits : {kGridBits, kDoubleGridBits}) {
       narrow_to_grid(*defining, root, bits);
       if (const auto sign = settled()) return sign;
@@ -674,6 +676,57 @@ class PlanarContact {
       if (const auto sign = settled()) return sign;
     }
     return std::nullopt;
+  }
+
+  // The sign of q at the root of p in (root.low, root.high), both of degree
+  // at most 2, with no narrowing: with p = a t^2 + b t + c and q = d t^2 +
+  // e t + f, a q - d p = alpha t + beta, so at the root r the sign of q is
+  // that of a (alpha r + beta), and r lies above rho = -beta / alpha exactly
+  // when rho is at or below the interval, or inside it where p has the
+  // sign it has below r, sign_after_low (alpha^2 p(rho) = a beta^2 - b alpha beta +
+  // c alpha^2; zero there: rho is r, and q vanishes). Linear p: b^2 q(-c/b).
+  // The operands are scaled by powers of two to a largest term near 1 and
+  // must keep every term above 2^-150 of it: then no product of five of
+  // them falls below 2^-1010, and all stay exact. nullopt otherwise.
+  static std::optional<int> sign_by_remainder(Polynomial4 q, Polynomial4 p, const Root& root) {
+    const int degree = p.degree();
+    if (degree < 1 || degree > 2 || q.degree() > 2 || !scaled_for_remainder(p) || !scaled_for_remainder(q))
+      return std::nullopt;
+    const auto coefficient = [](const Polynomial4& polynomial, int i) {
+      return i < polynomial.size ? polynomial.c[i] : Value();
+    };
+    const Value &c = p.c[0], &b = p.c[1], f = coefficient(q, 0), e = coefficient(q, 1), d = coefficient(q, 2);
+    if (degree == 1) return (d * c * c - e * b * c + f * b * b).sign();
+    const Value& a = p.c[2];
+    const Value alpha = a * e - d * b, beta = a * f - d * c;
+    if (alpha.is_zero()) return a.sign() * beta.sign();
+    // The sign of rho - t: of -(beta + alpha t) / alpha.
+    const auto rho_beyond = [&](double t) { return -(beta + alpha * t).sign() * alpha.sign(); };
+    int r_above_rho = 0;
+    if (rho_beyond(root.low) <= 0) {
+      r_above_rho = 1;
+    } else if (rho_beyond(root.high) >= 0) {
+      r_above_rho = -1;
+    } else {
+      const int p_at_rho = (a * beta * beta - b * alpha * beta + c * alpha * alpha).sign();
+      if (p_at_rho == 0) return 0;
+      r_above_rho = p_at_rho == root.sign_after_low ? 1 : -1;  // p's sign below r: rho is below
+    }
+    return a.sign() * alpha.sign() * r_above_rho;
+  }
+
+  // p scaled by a power of two to a largest term near 1; false when a
+  // nonzero coefficient has a term below 2^-150 of that.
+  static bool scaled_for_remainder(Polynomial4& p) {
+    double largest = 0;
+    for (int i = 0; i < p.size; ++i) largest = std::max(largest, p.c[i].largest_term());
+    if (largest == 0) return true;
+    const double factor = std::ldexp(1.0, -std::ilogb(largest));
+    for (int i = 0; i < p.size; ++i) {
+      p.c[i] = p.c[i] * factor;
+      if (!p.c[i].is_zero() && p.c[i].smallest_term() < 0x1p-150) return false;
+    }
+    return true;
   }
 
   int axis_;
