@@ -288,6 +288,18 @@ static_assert(!VertexEdgeTakes<Vector2d, Vec3> && !VertexEdgeTakes<Vec3, Vector2
 static_assert(VertexVertexTakes<Vector2d> && VertexVertexTakes<Vec3> && VertexVertexTakes<RefXd> &&
               VertexVertexTakes<Vec3, VectorXd>);
 static_assert(!VertexVertexTakes<Vector2d, Vec3> && !VertexVertexTakes<Eigen::Vector4d>);
+// Braced lists: three numbers are a point; two are not (a Vec3 would take
+// {1, 2} as its sizes and leave its coordinates unset), nor are four.
+template <class Number>
+concept TakesBracedPairs = requires(Number n) { batchccd::vertex_vertex_ccd({n, n}, {n, n}, {n, n}, {n, n}); };
+template <class Number>
+concept TakesBracedTriples =
+    requires(Number n) { batchccd::vertex_vertex_ccd({n, n, n}, {n, n, n}, {n, n, n}, {n, n, n}); };
+template <class Number>
+concept TakesBracedQuadruples =
+    requires(Number n) { batchccd::vertex_vertex_ccd({n, n, n, n}, {n, n, n, n}, {n, n, n, n}, {n, n, n, n}); };
+static_assert(TakesBracedTriples<double> && !TakesBracedPairs<int> && !TakesBracedPairs<double> &&
+              !TakesBracedQuadruples<int> && !TakesBracedQuadruples<double>);
 
 // A point kept in a buffer with a NaN right after it: a call that reads past
 // the vector's end sees the NaN (status invalid_input, hit, toi 0).

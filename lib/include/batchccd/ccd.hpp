@@ -15,7 +15,7 @@ QueryResult query_ccd(Kind kind, const Query& query, const Options& options = {}
 // z = 0, where it is decided as planar motion.
 
 // Points: Eigen vectors of doubles (Vec3, a Map, Ref, block, VectorXd, an
-// expression such as a + b, or a braced list {x, y, z}, read as a Vec3).
+// expression such as a + b), or braced lists of three numbers {x, y, z}.
 // vertex_face_ccd and edge_edge_ccd take 3D points only; vertex_edge_ccd
 // and vertex_vertex_ccd take 2D or 3D points, all of one length: a 2D point
 // is the 3D point (x, y, 0), so a 2D call is the call with its points
@@ -47,8 +47,9 @@ QueryResult query_ccd(Kind kind, const Query& query, const Options& options = {}
 // hit = true, toi = 0 (a caller that ignores status never skips a contact).
 // Degenerate geometry (a zero-area triangle, points that do not move,
 // coplanar motion) is valid input, decided like any other.
-template <class P0 = Vec3, class P1 = Vec3, class P2 = Vec3, class P3 = Vec3, class P4 = Vec3, class P5 = Vec3,
-          class P6 = Vec3, class P7 = Vec3>
+template <class P0 = detail::BracedPoint, class P1 = detail::BracedPoint, class P2 = detail::BracedPoint,
+          class P3 = detail::BracedPoint, class P4 = detail::BracedPoint, class P5 = detail::BracedPoint,
+          class P6 = detail::BracedPoint, class P7 = detail::BracedPoint>
   requires SpatialPoints<P0, P1, P2, P3, P4, P5, P6, P7>
 QueryResult vertex_face_ccd(const P0& p_t0, const P1& a_t0, const P2& b_t0, const P3& c_t0, const P4& p_t1,
                             const P5& a_t1, const P6& b_t1, const P7& c_t1, const Options& options = {}) {
@@ -64,8 +65,9 @@ QueryResult vertex_face_ccd(const P0& p_t0, const P1& a_t0, const P2& b_t0, cons
 // hit = true when the two segments (end points included) touch at some t in
 // [0, 1]. Zero-length and parallel edges are valid input. Results and bad
 // input as vertex_face_ccd.
-template <class P0 = Vec3, class P1 = Vec3, class P2 = Vec3, class P3 = Vec3, class P4 = Vec3, class P5 = Vec3,
-          class P6 = Vec3, class P7 = Vec3>
+template <class P0 = detail::BracedPoint, class P1 = detail::BracedPoint, class P2 = detail::BracedPoint,
+          class P3 = detail::BracedPoint, class P4 = detail::BracedPoint, class P5 = detail::BracedPoint,
+          class P6 = detail::BracedPoint, class P7 = detail::BracedPoint>
   requires SpatialPoints<P0, P1, P2, P3, P4, P5, P6, P7>
 QueryResult edge_edge_ccd(const P0& ea0_t0, const P1& ea1_t0, const P2& eb0_t0, const P3& eb1_t0,
                           const P4& ea0_t1, const P5& ea1_t1, const P6& eb0_t1, const P7& eb1_t1,
@@ -83,7 +85,8 @@ QueryResult edge_edge_ccd(const P0& ea0_t0, const P1& ea1_t0, const P2& eb0_t0, 
 // Options::min_distance of the segment (end points included). A zero-length
 // edge is valid input (then a point against a point). 2D or 3D points.
 // Results and bad input as vertex_face_ccd.
-template <class P0 = Vec3, class P1 = Vec3, class P2 = Vec3, class P3 = Vec3, class P4 = Vec3, class P5 = Vec3>
+template <class P0 = detail::BracedPoint, class P1 = detail::BracedPoint, class P2 = detail::BracedPoint,
+          class P3 = detail::BracedPoint, class P4 = detail::BracedPoint, class P5 = detail::BracedPoint>
   requires PlanarOrSpatialPoints<P0, P1, P2, P3, P4, P5>
 QueryResult vertex_edge_ccd(const P0& p_t0, const P1& e0_t0, const P2& e1_t0, const P3& p_t1, const P4& e0_t1,
                             const P5& e1_t1, const Options& options = {}) {
@@ -97,7 +100,8 @@ QueryResult vertex_edge_ccd(const P0& p_t0, const P1& e0_t0, const P2& e1_t0, co
 // Point p against point q: hit = true when they come within
 // Options::min_distance of each other. 2D or 3D points. Results and bad
 // input as vertex_face_ccd.
-template <class P0 = Vec3, class P1 = Vec3, class P2 = Vec3, class P3 = Vec3>
+template <class P0 = detail::BracedPoint, class P1 = detail::BracedPoint, class P2 = detail::BracedPoint,
+          class P3 = detail::BracedPoint>
   requires PlanarOrSpatialPoints<P0, P1, P2, P3>
 QueryResult vertex_vertex_ccd(const P0& p_t0, const P1& q_t0, const P2& p_t1, const P3& q_t1,
                               const Options& options = {}) {
