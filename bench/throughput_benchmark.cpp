@@ -68,15 +68,6 @@ reference::FilterSettings settings(const benchmark::State& state) {
   return {.sign = which == 0, .separation = which == 1, .pieces = 1, .swept_box = false};
 }
 
-const simd::FilterKernels* kernels_for(benchmark::State& state, Isa isa) {
-  try {
-    return &simd::filter_kernels(isa);
-  } catch (const std::invalid_argument&) {
-    state.SkipWithError("instruction set not available on this processor");
-    return nullptr;
-  }
-}
-
 void set_counters(benchmark::State& state, std::size_t candidates, double bytes_per_candidate,
                   std::size_t survivors) {
   const auto total = static_cast<std::int64_t>(candidates) * state.iterations();
@@ -98,15 +89,14 @@ std::size_t in_batches(std::size_t count, const Filter& filter) {
 
 // The certified filters over raw queries (192 bytes each).
 void filter_raw(benchmark::State& state, Isa isa, const std::vector<Query>& queries) {
-  const simd::FilterKernels* kernels = kernels_for(state, isa);
-  if (!kernels) return;
+  const simd::FilterKernels& kernels = simd::filter_kernels(isa);
   std::vector<std::uint32_t> survivors(queries.size());
   const simd::RawQueries source = simd::raw_queries(Kind::vertex_face, queries.data(), queries.size());
   std::size_t kept = 0;
   for (auto _ : state) {
     simd::FilterCounts counts;
     kept = in_batches(queries.size(), [&](std::size_t begin, std::size_t end) {
-      return kernels->raw(source, begin, end, settings(state), survivors.data(), counts);
+      return kernels.raw(source, begin, end, settings(state), survivors.data(), counts);
     });
     benchmark::DoNotOptimize(kept);
   }
@@ -128,8 +118,7 @@ void streaming_read(benchmark::State& state, const std::vector<Query>& queries) 
 // The filter over the mesh's index lists: positions stay in cache, the
 // index list streams (8 bytes a vertex-face pair, 16 an edge-edge one).
 void filter_mesh(benchmark::State& state, Isa isa, Kind kind) {
-  const simd::FilterKernels* kernels = kernels_for(state, isa);
-  if (!kernels) return;
+  const simd::FilterKernels& kernels = simd::filter_kernels(isa);
   const ClothCandidates& data = cloth();
   const MeshView view = data.mesh.view();
   const simd::PackedPositions packed(view.positions_t0, view.positions_t1);
@@ -143,10 +132,10 @@ void filter_mesh(benchmark::State& state, Isa isa, Kind kind) {
   for (auto _ : state) {
     kept = in_batches(count, [&](std::size_t begin, std::size_t end) {
       return kind == Kind::vertex_face
-                 ? kernels->vertex_face({positions, faces.view(), data.candidates.vertex_face.data()}, begin,
-                                        end, settings(state), survivors.data(), counts)
-                 : kernels->edge_edge({positions, data.candidates.edge_edge.data()}, begin, end,
-                                      settings(state), survivors.data(), counts);
+                 ? kernels.vertex_face({positions, faces.view(), data.candidates.vertex_face.data()}, begin,
+                                       end, settings(state), survivors.data(), counts)
+                 : kernels.edge_edge({positions, data.candidates.edge_edge.data()}, begin, end,
+                                     settings(state), survivors.data(), counts);
     });
     benchmark::DoNotOptimize(kept);
   }
@@ -155,7 +144,6 @@ void filter_mesh(benchmark::State& state, Isa isa, Kind kind) {
 
 // A whole mesh call, one thread: filter, solver, results.
 void end_to_end(benchmark::State& state, const lab::Method& method, Isa isa) {
-  if (!kernels_for(state, isa)) return;
   const ClothCandidates& data = cloth();
   Options options = method.applied_to({});
   options.isa = isa;
@@ -171,11 +159,11 @@ void end_to_end(benchmark::State& state, const lab::Method& method, Isa isa) {
 }
 
 void register_all() {
-  const std::pair<const char*, Isa> isas[] = {
-      {"scalar", Isa::scalar}, {"sse4", Isa::sse4}, {"avx2", Isa::avx2}, {"avx512", Isa::avx512}};
+  // Every instruction set this build and processor offer (scalar, sse4,
+  // avx2, avx512 on x86; scalar, neon on AArch64), each filter under its name.
   // Arg: 0 the sign filter alone, 1 the separation filter alone, 2 every stage.
-  for (const auto& [name, isa] : isas) {
-    const std::string suffix = std::string("/") + name;
+  for (const Isa isa : available_isas()) {
+    const std::string suffix = std::string("/") + to_string(isa);
     benchmark::RegisterBenchmark(("Filter/raw/cached" + suffix).c_str(),
                                  [isa = isa](benchmark::State& s) { filter_raw(s, isa, cached_queries()); })
         ->Arg(0)->Arg(2);

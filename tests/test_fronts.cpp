@@ -1,11 +1,14 @@
 // The calls shaped like ipc-toolkit's (ipc.hpp) and Tight Inclusion's
 // (tight_inclusion.hpp): the same arguments in the same order, the same
-// meaning. Coordinates are exact in binary, so contact times are exact.
+// meaning; and which points the per-kind calls (ccd.hpp) take. Coordinates
+// are exact in binary, so contact times are exact.
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -248,6 +251,199 @@ TEST(TightInclusionFront, ScalesWithTheCoordinates) {
   ASSERT_TRUE(batchccd::ticcd::vertexFaceCCD(big[0], big[1], big[2], big[3], big[4], big[5], big[6], big[7], err,
                                              0.125 * 0x1p40, scaled_toi, 1e-6 * 0x1p40, 1.0, -1, output_tolerance));
   EXPECT_EQ(toi, scaled_toi);
+}
+
+// The per-kind calls (ccd.hpp): any Eigen vector of doubles, of the length
+// the call takes; never read past its end.
+
+using Eigen::Vector2d;
+using Eigen::VectorXd;
+using MapXd = Eigen::Map<const VectorXd>;
+using RefXd = Eigen::Ref<const VectorXd>;
+
+// Which points each call takes, asked at compile time.
+template <class P, class Q = P>
+concept VertexFaceTakes = requires(const P& p, const Q& q) { batchccd::vertex_face_ccd(p, q, q, q, p, q, q, q); };
+template <class P, class Q = P>
+concept EdgeEdgeTakes = requires(const P& p, const Q& q) { batchccd::edge_edge_ccd(p, q, q, q, p, q, q, q); };
+template <class P, class Q = P>
+concept VertexEdgeTakes = requires(const P& p, const Q& q) { batchccd::vertex_edge_ccd(p, q, q, p, q, q); };
+template <class P, class Q = P>
+concept VertexVertexTakes = requires(const P& p, const Q& q) { batchccd::vertex_vertex_ccd(p, q, p, q); };
+
+// 3D only; lengths fixed at compile time that do not fit are refused then.
+static_assert(VertexFaceTakes<Vec3> && VertexFaceTakes<VectorXd> && VertexFaceTakes<MapXd> &&
+              VertexFaceTakes<RefXd> && VertexFaceTakes<Eigen::RowVector3d> && VertexFaceTakes<Vec3, VectorXd>);
+static_assert(!VertexFaceTakes<Vector2d> && !VertexFaceTakes<Vec3, Vector2d> && !VertexFaceTakes<Eigen::Vector4d> &&
+              !VertexFaceTakes<Eigen::Vector3f> && !VertexFaceTakes<Eigen::Matrix3d>);
+static_assert(EdgeEdgeTakes<Vec3> && EdgeEdgeTakes<VectorXd> && EdgeEdgeTakes<MapXd> && EdgeEdgeTakes<Vec3, RefXd>);
+static_assert(!EdgeEdgeTakes<Vector2d> && !EdgeEdgeTakes<Vec3, Vector2d> && !EdgeEdgeTakes<VectorXd, Vector2d> &&
+              !EdgeEdgeTakes<Eigen::Vector4d>);
+// The point calls: 2D or 3D, all of one length.
+static_assert(VertexEdgeTakes<Vector2d> && VertexEdgeTakes<Vec3> && VertexEdgeTakes<VectorXd> &&
+              VertexEdgeTakes<MapXd> && VertexEdgeTakes<Vector2d, VectorXd> && VertexEdgeTakes<Eigen::RowVector2d>);
+static_assert(!VertexEdgeTakes<Vector2d, Vec3> && !VertexEdgeTakes<Vec3, Vector2d> &&
+              !VertexEdgeTakes<Eigen::Vector4d> && !VertexEdgeTakes<Eigen::Matrix<double, 1, 1>> &&
+              !VertexEdgeTakes<Eigen::Vector2f>);
+static_assert(VertexVertexTakes<Vector2d> && VertexVertexTakes<Vec3> && VertexVertexTakes<RefXd> &&
+              VertexVertexTakes<Vec3, VectorXd>);
+static_assert(!VertexVertexTakes<Vector2d, Vec3> && !VertexVertexTakes<Eigen::Vector4d>);
+// Braced lists: three numbers are a point; two are not (a Vec3 would take
+// {1, 2} as its sizes and leave its coordinates unset), nor are four.
+template <class Number>
+concept TakesBracedPairs = requires(Number n) { batchccd::vertex_vertex_ccd({n, n}, {n, n}, {n, n}, {n, n}); };
+template <class Number>
+concept TakesBracedTriples =
+    requires(Number n) { batchccd::vertex_vertex_ccd({n, n, n}, {n, n, n}, {n, n, n}, {n, n, n}); };
+template <class Number>
+concept TakesBracedQuadruples =
+    requires(Number n) { batchccd::vertex_vertex_ccd({n, n, n, n}, {n, n, n, n}, {n, n, n, n}, {n, n, n, n}); };
+static_assert(TakesBracedTriples<double> && !TakesBracedPairs<int> && !TakesBracedPairs<double> &&
+              !TakesBracedQuadruples<int> && !TakesBracedQuadruples<double>);
+
+// A point kept in a buffer with a NaN right after it: a call that reads past
+// the vector's end sees the NaN (status invalid_input, hit, toi 0).
+class FencedPoints {
+ public:
+  template <class Point>
+  explicit FencedPoints(const std::vector<Point>& points) {
+    for (const Point& point : points) {
+      starts_.push_back(storage_.size());
+      lengths_.push_back(point.size());
+      for (Eigen::Index i = 0; i < point.size(); ++i) storage_.push_back(point[i]);
+      storage_.push_back(kNaN);
+    }
+  }
+  MapXd operator[](std::size_t k) const { return MapXd(storage_.data() + starts_[k], lengths_[k]); }
+
+ private:
+  std::vector<double> storage_;
+  std::vector<std::size_t> starts_;
+  std::vector<Eigen::Index> lengths_;
+};
+
+void expect_same(const batchccd::QueryResult& result, const batchccd::QueryResult& expected) {
+  EXPECT_EQ(result.hit, expected.hit);
+  EXPECT_EQ(result.toi, expected.toi);
+  EXPECT_EQ(result.status, expected.status);
+}
+
+// The message names the call and the argument.
+template <class Call>
+void expect_refused(Call call, const std::string& call_name, const std::string& argument) {
+  try {
+    call();
+    ADD_FAILURE() << "accepted; expected " << call_name << " to refuse " << argument;
+  } catch (const std::invalid_argument& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(call_name + ": " + argument + " "), std::string::npos) << message;
+  }
+}
+
+// Vec3, expressions, blocks and braced lists in one call: the same answer.
+TEST(PerKindCalls, MixedArguments) {
+  const Points x = falling_vertex();
+  const batchccd::QueryResult expected = batchccd::vertex_face_ccd(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7]);
+  ASSERT_TRUE(expected.hit);
+  const Vec3 fall(0, 0, -2);
+  Eigen::Matrix3d corners;
+  corners << 0, 1, 0, 0, 0, 1, 0, 0, 0;  // a, b, c as columns
+  const VectorXd dynamic_a = x[1];
+  expect_same(batchccd::vertex_face_ccd(x[0], dynamic_a, corners.col(1), {0, 1, 0}, x[0] + fall, x[5],
+                                        MapXd(x[6].data(), 3), corners.col(2)),
+              expected);
+  const Points e = crossing_edges();
+  expect_same(batchccd::edge_edge_ccd(e[0], e[1], {0, -1, 0}, e[3], e[0] - 2 * Vec3::UnitZ(), e[5], e[6], e[7]),
+              batchccd::edge_edge_ccd(e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7]));
+}
+
+// A 2D point crossing an edge in the plane, and a 2D point passing another:
+// the lifted 3D query's answer, through fixed 2-vectors and through dynamic
+// ones in fenced buffers.
+TEST(PerKindCalls, PlanarPointCallsAreTheLiftedQuery) {
+  using batchccd::Kind;
+  const std::vector<Vector2d> crossing = {{0.5, 1}, {0, 0}, {1, 0}, {0.5, -1}, {0, 0}, {1, 0}};
+  const std::vector<Vector2d> passing = {{2, 1}, {0, 0}, {1, 0}, {2, -1}, {0, 0}, {1, 0}};  // 1 from e1
+  for (const std::vector<Vector2d>& x : {crossing, passing})
+    for (const double min_distance : {0.0, 0.5, 1.0}) {
+      batchccd::Options options;
+      options.min_distance = min_distance;
+      const batchccd::QueryResult lifted = batchccd::query_ccd(
+          Kind::vertex_edge, batchccd::lifted(batchccd::make_query(Kind::vertex_edge, std::span(x).first(3), std::span(x).last(3))),
+          options);
+      EXPECT_EQ(lifted.status, batchccd::Status::ok);
+      const FencedPoints fenced(x);
+      expect_same(batchccd::vertex_edge_ccd(x[0], x[1], x[2], x[3], x[4], x[5], options), lifted);
+      expect_same(batchccd::vertex_edge_ccd(fenced[0], fenced[1], fenced[2], fenced[3], fenced[4], fenced[5], options),
+                  lifted);
+      expect_same(batchccd::vertex_edge_ccd(x[0], fenced[1], x[2], fenced[3], x[4], fenced[5], options), lifted);
+    }
+  // Touching: the crossing at t = 1/2, the pass (1 from e1) not.
+  batchccd::Options options;
+  const batchccd::QueryResult crossed =
+      batchccd::vertex_edge_ccd(crossing[0], crossing[1], crossing[2], crossing[3], crossing[4], crossing[5], options);
+  EXPECT_TRUE(crossed.hit);
+  EXPECT_LE(crossed.toi, 0.5);
+  EXPECT_GE(crossed.toi, 0.5 - options.toi_tolerance);
+  EXPECT_FALSE(
+      batchccd::vertex_edge_ccd(passing[0], passing[1], passing[2], passing[3], passing[4], passing[5], options).hit);
+
+  // p passes 0.25 from q.
+  const std::vector<Vector2d> points = {{-1, 0}, {0, 0.25}, {1, 0}, {0, 0.25}};
+  const FencedPoints fenced(points);
+  for (const double min_distance : {0.2, 0.3}) {
+    options.min_distance = min_distance;
+    const batchccd::QueryResult lifted =
+        batchccd::query_ccd(Kind::vertex_vertex,
+                            batchccd::lifted(batchccd::make_query(Kind::vertex_vertex, std::span(points).first(2),
+                                                                  std::span(points).last(2))),
+                            options);
+    EXPECT_EQ(lifted.hit, min_distance > 0.25);
+    expect_same(batchccd::vertex_vertex_ccd(points[0], points[1], points[2], points[3], options), lifted);
+    expect_same(batchccd::vertex_vertex_ccd(fenced[0], fenced[1], fenced[2], fenced[3], options), lifted);
+  }
+}
+
+// Lengths known only at run time that do not fit: refused, naming the call
+// and the first argument that does not fit, before anything is read.
+TEST(PerKindCalls, LengthsThatDoNotFitAreRefusedAtRunTime) {
+  const FencedPoints fenced(std::vector<VectorXd>{Vector2d(0.5, 1), Vec3(0.5, 1, 0), Eigen::Vector4d(0.5, 1, 0, 0),
+                                                  VectorXd::Constant(1, 0.5), VectorXd()});
+  const MapXd planar = fenced[0], spatial = fenced[1], four = fenced[2], one = fenced[3], empty = fenced[4];
+  const Vec3 a(0, 0, 0);
+  // 3D only: a 2-vector through every argument of the 3D calls.
+  const std::array<std::string, 8> vertex_face_names = {"p_t0", "a_t0", "b_t0", "c_t0",
+                                                        "p_t1", "a_t1", "b_t1", "c_t1"};
+  const std::array<std::string, 8> edge_edge_names = {"ea0_t0", "ea1_t0", "eb0_t0", "eb1_t0",
+                                                      "ea0_t1", "ea1_t1", "eb0_t1", "eb1_t1"};
+  for (std::size_t k = 0; k < 8; ++k) {
+    // Argument k planar, the others spatial.
+    const auto x = [&](std::size_t i) -> const MapXd& { return i == k ? planar : spatial; };
+    expect_refused([&] { batchccd::vertex_face_ccd(x(0), x(1), x(2), x(3), x(4), x(5), x(6), x(7)); },
+                   "batchccd::vertex_face_ccd", vertex_face_names[k]);
+    expect_refused([&] { batchccd::edge_edge_ccd(x(0), x(1), x(2), x(3), x(4), x(5), x(6), x(7)); },
+                   "batchccd::edge_edge_ccd", edge_edge_names[k]);
+  }
+  expect_refused([&] { batchccd::vertex_face_ccd(a, a, a, a, a, a, a, planar); }, "batchccd::vertex_face_ccd",
+                 "c_t1");
+  expect_refused([&] { batchccd::edge_edge_ccd(four, a, a, a, a, a, a, a); }, "batchccd::edge_edge_ccd", "ea0_t0");
+  // The point calls: 2D or 3D, all like the first.
+  const std::array<std::string, 6> vertex_edge_names = {"p_t0", "e0_t0", "e1_t0", "p_t1", "e0_t1", "e1_t1"};
+  for (std::size_t k = 1; k < 6; ++k) {
+    // Argument k spatial, the others planar like the first.
+    const auto x = [&](std::size_t i) -> const MapXd& { return i == k ? spatial : planar; };
+    expect_refused([&] { batchccd::vertex_edge_ccd(x(0), x(1), x(2), x(3), x(4), x(5)); },
+                   "batchccd::vertex_edge_ccd", vertex_edge_names[k]);
+  }
+  for (const MapXd& wrong : {four, one, empty}) {
+    expect_refused([&] { batchccd::vertex_edge_ccd(wrong, wrong, wrong, wrong, wrong, wrong); },
+                   "batchccd::vertex_edge_ccd", "p_t0");
+    expect_refused([&] { batchccd::vertex_vertex_ccd(wrong, wrong, wrong, wrong); }, "batchccd::vertex_vertex_ccd",
+                   "p_t0");
+  }
+  expect_refused([&] { batchccd::vertex_vertex_ccd(a, spatial, planar, a); }, "batchccd::vertex_vertex_ccd", "p_t1");
+  expect_refused([&] { batchccd::vertex_vertex_ccd(planar, planar, planar, spatial); },
+                 "batchccd::vertex_vertex_ccd", "q_t1");
 }
 
 }  // namespace

@@ -2,7 +2,10 @@
 #include "batchccd/lab.hpp"
 
 #include <array>
+#include <cassert>
+#include <string>
 
+#include "fronts.hpp"
 #include "reference/closest_distance.hpp"
 #include "reference/reference.hpp"
 #include "reference/scaled_query.hpp"
@@ -18,29 +21,30 @@ QueryResult query_ccd(Kind kind, const Query& query, const Options& options) {
   return lab::query_ccd(kind, query, options, {});
 }
 
-QueryResult vertex_face_ccd(const Vec3& p_t0, const Vec3& a_t0, const Vec3& b_t0,
-                            const Vec3& c_t0, const Vec3& p_t1, const Vec3& a_t1,
-                            const Vec3& b_t1, const Vec3& c_t1, const Options& options) {
-  return query_ccd(Kind::vertex_face, {{p_t0, a_t0, b_t0, c_t0, p_t1, a_t1, b_t1, c_t1}}, options);
+namespace detail {
+
+Query query_from_points(const char* call, Kind kind, std::span<const PointArgument> points) {
+  const std::size_t per_time = static_cast<std::size_t>(points_per_time(kind));
+  assert(points.size() == 2 * per_time);
+  const bool planar_allowed = kind == Kind::vertex_edge || kind == Kind::vertex_vertex;
+  const PointArgument& first = points.front();
+  const bool first_fits = first.length == 3 || (planar_allowed && first.length == 2);
+  fronts::require(first_fits, call, first.name, planar_allowed ? "of length 2 or 3" : "of length 3",
+                  static_cast<double>(first.length));
+  const std::string like_first = "of length " + std::to_string(first.length) + " like " + first.name;
+  for (const PointArgument& argument : points)
+    fronts::require(argument.length == first.length, call, argument.name, like_first.c_str(),
+                    static_cast<double>(argument.length));
+  std::array<Vec3, 4> at_t0, at_t1;
+  for (std::size_t k = 0; k < per_time; ++k) {
+    at_t0[k] = points[k].point;
+    at_t1[k] = points[per_time + k].point;
+  }
+  return make_query(kind, std::span<const Vec3>(at_t0.data(), per_time),
+                    std::span<const Vec3>(at_t1.data(), per_time));
 }
 
-QueryResult edge_edge_ccd(const Vec3& ea0_t0, const Vec3& ea1_t0, const Vec3& eb0_t0,
-                          const Vec3& eb1_t0, const Vec3& ea0_t1, const Vec3& ea1_t1,
-                          const Vec3& eb0_t1, const Vec3& eb1_t1, const Options& options) {
-  return query_ccd(Kind::edge_edge,
-                   {{ea0_t0, ea1_t0, eb0_t0, eb1_t0, ea0_t1, ea1_t1, eb0_t1, eb1_t1}}, options);
-}
-
-QueryResult vertex_edge_ccd(const Vec3& p_t0, const Vec3& e0_t0, const Vec3& e1_t0,
-                            const Vec3& p_t1, const Vec3& e0_t1, const Vec3& e1_t1,
-                            const Options& options) {
-  return query_ccd(Kind::vertex_edge, {{p_t0, p_t0, e0_t0, e1_t0, p_t1, p_t1, e0_t1, e1_t1}}, options);
-}
-
-QueryResult vertex_vertex_ccd(const Vec3& p_t0, const Vec3& q_t0, const Vec3& p_t1,
-                              const Vec3& q_t1, const Options& options) {
-  return query_ccd(Kind::vertex_vertex, {{p_t0, p_t0, q_t0, q_t0, p_t1, p_t1, q_t1, q_t1}}, options);
-}
+}  // namespace detail
 
 double squared_distance(Kind kind, const Query& query, double t) {
   std::array<reference::Point<double>, 4> x;

@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <array>
-#include <cassert>
 #include <cmath>
 #include <limits>
-#include <string>
 
 #include "batchccd/ccd.hpp"
 #include "fronts.hpp"
@@ -67,18 +65,6 @@ QueryResult small_toi_retry(Kind kind, const Query& query, double initial_distan
   return result;
 }
 
-void require_lengths(const char* call, Kind kind, std::span<const detail::PointArgument> points) {
-  const bool planar_allowed = kind == Kind::vertex_edge || kind == Kind::vertex_vertex;
-  const detail::PointArgument& first = points.front();
-  const bool first_fits = first.length == 3 || (planar_allowed && first.length == 2);
-  fronts::require(first_fits, call, first.name, planar_allowed ? "of length 2 or 3" : "of length 3",
-                  static_cast<double>(first.length));
-  const std::string like_first = "of length " + std::to_string(first.length) + " like " + first.name;
-  for (const detail::PointArgument& argument : points)
-    fronts::require(argument.length == first.length, call, argument.name, like_first.c_str(),
-                    static_cast<double>(argument.length));
-}
-
 // The settings NarrowPhase holds, checked by its constructor and by every
 // call (its members may change in between).
 void require_settings(const char* call, double tolerance, double conservative_rescaling) {
@@ -136,17 +122,8 @@ namespace detail {
 
 bool ccd(const char* call, Kind kind, std::span<const PointArgument> points, double& toi, double min_distance,
          double tmax, double tolerance, long max_iterations, double conservative_rescaling) {
-  const std::size_t per_time = static_cast<std::size_t>(points_per_time(kind));
-  assert(points.size() == 2 * per_time);
-  require_lengths(call, kind, points);
+  const Query query = batchccd::detail::query_from_points(call, kind, points);
   rules::require_arguments(call, min_distance, tmax, tolerance, conservative_rescaling);
-  std::array<Vec3, 4> at_t0, at_t1;
-  for (std::size_t k = 0; k < per_time; ++k) {
-    at_t0[k] = points[k].point;
-    at_t1[k] = points[per_time + k].point;
-  }
-  const Query query = make_query(kind, std::span<const Vec3>(at_t0.data(), per_time),
-                                 std::span<const Vec3>(at_t1.data(), per_time));
   return rules::decide(kind, query, toi, min_distance, tmax, tolerance, max_iterations, conservative_rescaling);
 }
 

@@ -70,10 +70,9 @@
 // narrow phase around (ipc-toolkit's compute_collision_free_stepsize).
 // The whole collision-free step over a mesh's candidates is one batch call:
 // collision_free_stepsize (ipc_stepsize.hpp).
-#include <concepts>
-#include <initializer_list>
 #include <span>
 
+#include "batchccd/point_arguments.hpp"
 #include "batchccd/query.hpp"
 
 namespace batchccd::ipc {
@@ -83,54 +82,16 @@ inline constexpr double DEFAULT_CCD_TOLERANCE = 1e-6;
 inline constexpr long DEFAULT_CCD_MAX_ITERATIONS = 10'000'000L;
 inline constexpr double DEFAULT_CCD_CONSERVATIVE_RESCALING = 0.8;
 
-namespace detail {
-
-// An Eigen vector of doubles: a Matrix, Map, Ref, block or expression.
-template <class T>
-concept DoubleVector = std::derived_from<T, Eigen::MatrixBase<T>> && std::same_as<typename T::Scalar, double> &&
-                       bool(T::IsVectorAtCompileTime);
-
-// Lengths fixed at compile time lie in [shortest, 3] and agree; a length
-// known only at run time (Eigen::Dynamic) is checked then.
-constexpr bool fixed_lengths_fit(int shortest, std::initializer_list<int> lengths) {
-  int fixed = Eigen::Dynamic;
-  for (const int length : lengths) {
-    if (length == Eigen::Dynamic) continue;
-    if (length < shortest || length > 3 || (fixed != Eigen::Dynamic && length != fixed)) return false;
-    fixed = length;
-  }
-  return true;
-}
-
-}  // namespace detail
-
-// The points of point_point_ccd and point_edge_ccd: all 2D or all 3D.
-template <class... Points>
-concept PlanarOrSpatialPoints =
-    (detail::DoubleVector<Points> && ...) && detail::fixed_lengths_fit(2, {int(Points::SizeAtCompileTime)...});
-
-// The points of edge_edge_ccd and point_triangle_ccd: 3D.
-template <class... Points>
-concept SpatialPoints =
-    (detail::DoubleVector<Points> && ...) && detail::fixed_lengths_fit(3, {int(Points::SizeAtCompileTime)...});
+// The points of point_point_ccd and point_edge_ccd: all 2D or all 3D; of
+// edge_edge_ccd and point_triangle_ccd: 3D (point_arguments.hpp, shared
+// with ccd.hpp's calls).
+using batchccd::PlanarOrSpatialPoints;
+using batchccd::SpatialPoints;
 
 namespace detail {
 
-// One point argument: its name for messages, its length, and its
-// coordinates in 3D (z = 0 for a 2D point). A vector of another length is
-// not read; the call refuses it.
-struct PointArgument {
-  const char* name;
-  Eigen::Index length;
-  Vec3 point;
-};
-
-template <class P>
-PointArgument read_point(const char* name, const Eigen::MatrixBase<P>& point) {
-  PointArgument argument{name, point.size(), Vec3::Zero()};
-  if (argument.length == 2 || argument.length == 3) argument.point.head(argument.length) = point;
-  return argument;
-}
+using batchccd::detail::PointArgument;
+using batchccd::detail::read_point;
 
 // The calls below, once their points are read: `points` holds the t0
 // points, then the t1 points, in the call's order (make_query's). Checks
