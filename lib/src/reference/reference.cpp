@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include <Eigen/Geometry>
 
@@ -86,6 +87,15 @@ bool shares_coordinate(const Query& query, int axis) {
                      [&](const Vec3& point) { return point[axis] == query.points[0][axis]; });
 }
 
+// The first axis whose coordinate every point shares (exact_plane_axis's
+// answer then), without its test for tilted planes, which a separation's
+// planar search cannot take.
+std::optional<int> shared_axis(const Query& query) {
+  for (int axis = 0; axis < 3; ++axis)
+    if (shares_coordinate(query, axis)) return axis;
+  return std::nullopt;
+}
+
 // Planar motion (docs/design.md §5a): all eight points in one plane, where
 // the coplanarity cubic vanishes and says nothing. Decided in the plane;
 // what its signs cannot settle, exactly. False when the motion is not
@@ -122,8 +132,8 @@ bool decide_within_by_pairs(Kind kind, const Query& query, const ScaledQuery& sc
   const double separation = to_scaled_length(scaled, options.min_distance);
   const double toi_width = located_toi_width(options, decider);
   PlanarOutcome outcome;
-  const std::optional<int> axis = lab.planar_path ? exact::exact_plane_axis(query) : std::nullopt;
-  if (axis && shares_coordinate(query, *axis))
+  const std::optional<int> axis = lab.planar_path ? shared_axis(query) : std::nullopt;
+  if (axis)
     outcome = solve_planar_within(shape, scaled, *axis, separation, options.tmax, toi_width);
   else if (lab.point_search && is_point_shape(shape))
     outcome = solve_point_within(shape, scaled, separation, options.tmax, toi_width);
