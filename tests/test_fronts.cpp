@@ -39,13 +39,17 @@ Points crossing_edges() {
   return {Vec3(-1, 0, 1), Vec3(1, 0, 1), b0, b1, Vec3(-1, 0, -1), Vec3(1, 0, -1), b0, b1};
 }
 
-// Edge a on the x axis, still; edge b turns about its middle, held 1.5e-2
-// above a's middle: it keeps 1.5e-2 / sqrt(2) from a, 1.06 times the
-// separation 1e-2, a miss only a long search proves.
+// Edge a on the x axis, still, ending a little short of x = 1/2; edge b
+// turns about its middle, held 1.625 2^-7 above the axis at x = 1/2. b's
+// line comes within 1.625 2^-7 / sqrt(2) of a's line, below the
+// separation 1e-2, but beyond a's end: the edges keep sqrt(end gap^2 +
+// that^2) = 1.07e-2 apart, their closest at a's end (so neither the
+// distance between the lines nor any fixed direction proves it), a miss
+// only a long search proves.
 Points turning_edge_above() {
-  const double height = 1.5e-2;
-  return {Vec3(0, 0, 0),       Vec3(1, 0, 0),           Vec3(0.5, -1, 1 + height), Vec3(0.5, 1, -1 + height),
-          Vec3(0, 0, 0),       Vec3(1, 0, 0),           Vec3(0.5, -1, -1 + height), Vec3(0.5, 1, 1 + height)};
+  const double height = 0x1p-7 * 1.625, end = 0.5 - 0x1p-7 * 0.75;
+  return {Vec3(0, 0, 0),       Vec3(end, 0, 0),         Vec3(0.5, -1, 1 + height), Vec3(0.5, 1, -1 + height),
+          Vec3(0, 0, 0),       Vec3(end, 0, 0),         Vec3(0.5, -1, -1 + height), Vec3(0.5, 1, 1 + height)};
 }
 
 bool point_triangle(const Points& x, double& toi, double min_distance = 0, double tmax = 1) {

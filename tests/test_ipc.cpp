@@ -354,19 +354,23 @@ TEST(IpcRules, SmallToiBelowTheFinestResolutionIsBoundedBySpeed) {
   }
 }
 
-// The retry has no iteration limit, as there. With max_iterations 0 the
-// first ask gives up on these nearly parallel edges (b turns 2^-30 out of
-// a's direction) and reports toi 0; the retry still locates the contact,
-// when a (falling at speed 2 from 1 above b's nearest end) comes within
-// 1/8 of b: t = (1 - 1/8) / 2.
+// The retry has no iteration limit, as there. Edge a, still, ends short of
+// x = 1/2; edge b turns about its middle above x = 1/2, closest to a's end
+// at t = 0 and 1 (sqrt(3/4^2 + 1.625^2 / 2) 2^-7 apart), with a separation
+// 1e-7 of that below it: a miss only a long search proves, neither the
+// lines' distance nor a fixed direction. With max_iterations 0 the first
+// ask gives up at once (below the small toi) and would report a contact
+// there; the retry, unlimited, proves the miss. Passing max_iterations to
+// the retry turns this into a contact.
 TEST(IpcRules, SmallToiRetryHasNoIterationLimit) {
-  const Vec3 b0(0.5, 0, 0), b1(1.5, 0x1p-30, 0);
-  const double min_distance = 0.125, contact_time = (1 - min_distance) / 2;
+  const double height = 0x1p-7 * 1.625, gap = 0x1p-7 * 0.75, end = 0.5 - gap;
+  const Vec3 a0(0, 0, 0), a1(end, 0, 0);
+  const double closest = std::sqrt(gap * gap + height * height / 2), min_distance = closest * (1 - 1e-7);
   double toi = -1;
-  ASSERT_TRUE(ipc::edge_edge_ccd(Vec3(0, 0, 1), Vec3(1, 0, 1), b0, b1, Vec3(0, 0, -1), Vec3(1, 0, -1), b0, b1, toi,
-                                 min_distance, 1.0, ipc::DEFAULT_CCD_TOLERANCE, /*max_iterations=*/0));
-  EXPECT_LE(toi, 0.8 * contact_time);
-  EXPECT_GE(toi, 0.8 * (contact_time - 1e-6));
+  EXPECT_FALSE(ipc::edge_edge_ccd(a0, a1, Vec3(0.5, -1, 1 + height), Vec3(0.5, 1, -1 + height), a0, a1,
+                                  Vec3(0.5, -1, -1 + height), Vec3(0.5, 1, 1 + height), toi, min_distance, 1.0,
+                                  ipc::DEFAULT_CCD_TOLERANCE, /*max_iterations=*/0));
+  EXPECT_EQ(toi, -1);
 }
 
 // NarrowPhase: TightInclusionCCD's settings, forwarded to the calls.

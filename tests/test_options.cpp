@@ -108,12 +108,15 @@ TEST(ToiTolerance, BoundsHowEarlyTheToiIsDownToItsFloor) {
 // (zero or negative: at the first) and reports a hit, counted undecided:
 // a miss is never claimed unproven.
 TEST(MaxIterations, ExhaustedAtASeparationIsAnUndecidedHit) {
-  // Edge a on the x axis, still; edge b turns about its middle, held 1.5e-2
-  // above a's middle: it keeps 1.5e-2 / sqrt(2) from a, 1.06 times the
-  // separation, a miss only a long search proves.
-  const double height = 1.5e-2;
-  const std::vector<Query> queries{Query{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, -1, 1 + height),
-                                          Vec3(0.5, 1, -1 + height), Vec3(0, 0, 0), Vec3(1, 0, 0),
+  // Edge a on the x axis, still, ending a little short of x = 1/2; edge b
+  // turns about its middle, held 1.625 2^-7 above the axis at x = 1/2. b's
+  // line comes within the separation of a's line, but beyond a's end: the
+  // edges keep 1.07 times the separation apart, closest at a's end (so
+  // neither the lines' distance nor a fixed direction proves it), a miss
+  // only a long search proves.
+  const double height = 0x1p-7 * 1.625, end = 0.5 - 0x1p-7 * 0.75;
+  const std::vector<Query> queries{Query{{Vec3(0, 0, 0), Vec3(end, 0, 0), Vec3(0.5, -1, 1 + height),
+                                          Vec3(0.5, 1, -1 + height), Vec3(0, 0, 0), Vec3(end, 0, 0),
                                           Vec3(0.5, -1, -1 + height), Vec3(0.5, 1, 1 + height)}}};
   for (const Mode mode : {Mode::conservative, Mode::exact}) {
     SCOPED_TRACE(to_string(mode));

@@ -88,6 +88,12 @@ CASES = [
     ("point_triangle_ccd", ([0.25, -0.25, 0], [-0.25, 0, 0], [1, 0.75, 0.25], [0.5, 0.25, -0.25],
                             [-0.5, -0.25, 0], [-0.25, 0, 0], [1, 0.75, 0.25], [0.5, 0.25, -0.25]), 0.25, 1.0),
     ("point_triangle_ccd", ([2, 2, 1], O, B, C, [2, 2, -1], O, B, C), 0.0, 1.0),
+    # Edge b turns about its middle over a's end, closest there at 1.07 times
+    # the separation: a miss only a search over boxes proves (the others
+    # are decided without one), so max_iterations 0 gives up: a contact.
+    ("edge_edge_ccd", (O, [0.5 - 0.75 / 128, 0, 0], [0.5, -1, 1 + 1.625 / 128], [0.5, 1, -1 + 1.625 / 128],
+                       O, [0.5 - 0.75 / 128, 0, 0], [0.5, -1, -1 + 1.625 / 128], [0.5, 1, 1 + 1.625 / 128]),
+     0.01, 1.0),
 ]
 
 SETTINGS = [

@@ -14,13 +14,6 @@
 namespace batchccd::exact {
 namespace {
 
-// The axis whose coordinate the points share at each time, if any.
-std::optional<int> shared_coordinate(const Query& query) {
-  for (int axis = 0; axis < 3; ++axis)
-    if (shares_coordinate(query, axis)) return axis;
-  return std::nullopt;
-}
-
 // Whether d may lie in the plane of a, b, c: orient3d(a, b, c, d) in
 // double is within its error bound of 0 (generous: a difference's rounding,
 // two products and two sums on each term's path, well under 32 u of the
@@ -131,8 +124,14 @@ bool shares_coordinate(const Query& query, int axis) {
   return shared_at(0) && shared_at(4);
 }
 
+std::optional<int> shared_axis(const Query& query) {
+  for (int axis = 0; axis < 3; ++axis)
+    if (shares_coordinate(query, axis)) return axis;
+  return std::nullopt;
+}
+
 std::optional<int> exact_plane_axis(const Query& query) {
-  if (const auto axis = shared_coordinate(query)) return axis;
+  if (const auto axis = shared_axis(query)) return axis;
   const std::optional<Query> scaled = normalized(query, -200);
   if (!scaled) return std::nullopt;
   // Three reference points spanning the plane: the first, the farthest from

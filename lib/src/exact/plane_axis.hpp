@@ -26,4 +26,9 @@ std::optional<int> exact_plane_axis(const Query& query);
 // distances too. exact_plane_axis answers such an axis first.
 bool shares_coordinate(const Query& query, int axis);
 
+// The first axis whose coordinate the points of each time share, if any
+// (exact_plane_axis's answer then), without its exact test for tilted
+// planes: a cheap test where only axis planes will do.
+std::optional<int> shared_axis(const Query& query);
+
 }  // namespace batchccd::exact

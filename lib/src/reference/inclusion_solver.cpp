@@ -251,17 +251,35 @@ class InclusionSolver {
     return n && separated_along(*n, ends);
   }
 
-  // F at the primitives' closest parameters at time t, found in plain double
-  // (any direction serves separated_along): none when it vanishes.
-  std::optional<V3> closest_direction(double t) const {
-    std::array<V3, 3> at_t;
-    for (int i = 0; i < 3; ++i) at_t[i] = interpolate(position_[i][0], position_[i][1], t);
-    const auto [u, v] = closest_parameters(at_t);
-    const V3 n = weighted_sum(weights(kind_, u, v), at_t);  // VF: towards the vertex; EE: towards edge a
+  // The positions x2..x4 at time t and the primitives' closest parameters
+  // there, found in plain double.
+  struct ClosestAt {
+    std::array<V3, 3> position;
+    std::array<double, 2> parameters;
+    // Inside both primitives (VF: the triangle's interior; EE: both edges'),
+    // where the distance is the plane's or the lines' (cleared_by_plane).
+    bool interior(Kind kind) const {
+      const auto [u, v] = parameters;
+      return kind == Kind::vertex_face ? u > 0 && v > 0 && u + v < 1 : u > 0 && u < 1 && v > 0 && v < 1;
+    }
+  };
+  ClosestAt closest_at(double t) const {
+    ClosestAt closest;
+    for (int i = 0; i < 3; ++i) closest.position[i] = interpolate(position_[i][0], position_[i][1], t);
+    closest.parameters = closest_parameters(closest.position);
+    return closest;
+  }
+
+  // F at the primitives' closest parameters (any direction serves
+  // separated_along): none when it vanishes.
+  std::optional<V3> closest_direction(const ClosestAt& closest) const {
+    const auto [u, v] = closest.parameters;
+    const V3 n = weighted_sum(weights(kind_, u, v), closest.position);  // VF: towards the vertex; EE: towards edge a
     const double length2 = dot(n, n);
     if (!(length2 > 0) || !std::isfinite(length2)) return std::nullopt;
     return n;
   }
+  std::optional<V3> closest_direction(double t) const { return closest_direction(closest_at(t)); }
 
   // Whether the gap along n between the two primitives exceeds min_distance
   // |n| at both ends of the interval `ends` holds, so (the gap being concave
@@ -303,10 +321,10 @@ class InclusionSolver {
   // step stops at `until`), or t is returned. Where the primitives slide past each other
   // the motion along n is a small part of m, and this step is that much
   // longer than conservative advancement's.
-  double cleared_along_closest(double t, double until) const {
+  double cleared_along_closest(double t, double until, const ClosestAt& closest) const {
     constexpr double grid = 0x1p45;
     if (std::floor(t * grid) / grid != t) return t;  // off the grid: interpolation not bounded
-    const std::optional<V3> n = closest_direction(t);
+    const std::optional<V3> n = closest_direction(closest);
     if (!n) return t;
     const double separation = settings_.min_distance * std::sqrt(dot(*n, *n));
     const bool vertex_face = kind_ == Kind::vertex_face;
@@ -333,6 +351,59 @@ class InclusionSolver {
     const double end = std::min(1.0, t + std::floor((reach - t) * 0.9375 * grid) / grid);
     if (!(end > t)) return t;
     return separated_along(*n, endpoints(Interval{t, end})) ? std::min(end, until) : t;
+  }
+
+  // How far from t (on the 2^-45 grid) the distance to the triangle's plane
+  // (VF) or between the edges' lines (EE), |V| / |n| with n = a x b and V
+  // the coplanarity cubic n . c, stays above min_distance. It bounds the
+  // primitives' distance from below, and equals it while their closest
+  // points lie inside both (docs/design.md §11): where a triangle or an edge
+  // turns, a fixed direction's gap shrinks as fast as its farthest vertex
+  // moves, this one only as fast as the distance. Newton's steps on
+  // h = |V| - min_distance |n| from t, in plain double, estimate where it
+  // reaches min_distance; 15/16 of the way there (on the grid), the sign
+  // test with a separation, with the normal's Euclidean length, certifies
+  // the interval (plane_distance_culls), or a half, quarter or eighth of it,
+  // or t is returned. Certified up to its end whatever `until`, as
+  // cleared_along_closest is.
+  double cleared_by_plane(double t, double until) const {
+    constexpr double grid = 0x1p45;
+    if (std::floor(t * grid) / grid != t) return t;  // off the grid: interpolation not bounded
+    // a, b, c at time 0 and their rates: VF x21, x31, x41; EE x21, x43, x31.
+    const bool vertex_face = kind_ == Kind::vertex_face;
+    const V3 a0 = position_[0][0], b0 = vertex_face ? position_[1][0] : position_[2][0] - position_[1][0];
+    const V3 c0 = vertex_face ? position_[2][0] : position_[1][0];
+    const V3 a1 = position_[0][1], b1 = vertex_face ? position_[1][1] : position_[2][1] - position_[1][1];
+    const V3 c1 = vertex_face ? position_[2][1] : position_[1][1];
+    const V3 da = a1 - a0, db = b1 - b0, dc = c1 - c0;
+    const double separation = settings_.min_distance;
+    // h and its derivative at s.
+    const auto h_at = [&](double s, double& slope) {
+      const auto at = [s](const V3& p, const V3& d) { return V3{p.x + s * d.x, p.y + s * d.y, p.z + s * d.z}; };
+      const V3 a = at(a0, da), b = at(b0, db), c = at(c0, dc);
+      const V3 n = cross(a, b), dn = cross(da, b) + cross(a, db);
+      const double v = dot(n, c), dv = dot(dn, c) + dot(n, dc), length = std::sqrt(dot(n, n));
+      slope = (v < 0 ? -dv : dv) - separation * dot(n, dn) / length;
+      return std::fabs(v) - separation * length;
+    };
+    double slope = 0;
+    if (!(h_at(t, slope) > 0)) return t;
+    double reach = t;
+    if (!(slope < 0)) {
+      reach = 1;  // moving apart at t: the whole step, if nothing turns it
+    } else {
+      for (int iteration = 0; iteration < 4; ++iteration) {
+        const double h = h_at(reach, slope);
+        if (!(slope < 0) || !std::isfinite(h)) break;
+        reach = std::clamp(reach - h / slope, t, 1.0);
+      }
+    }
+    // Far from the reach the coefficients' hull is loose where the plane
+    // turns: shorter intervals (halved up to three times) fit it closer.
+    double length = std::floor((std::min(1.0, t + (reach - t) * 0.9375) - t) * grid) / grid;
+    for (int attempt = 0; attempt < 4 && length > 0; ++attempt, length = std::floor(length * 0.5 * grid) / grid)
+      if (plane_apart(endpoints(Interval{t, t + length}))) return std::min(t + length, until);
+    return t;
   }
 
   // Whether a witness stands at one of the times toi_tolerance, twice that,
@@ -367,21 +438,29 @@ class InclusionSolver {
     for (int step = 0; step < kSteps && t < until; ++step) {
       // Along the closest direction a step often clears all the way (and
       // then t itself holds no contact).
-      const double cleared = cleared_along_closest(t, until);
+      const ClosestAt closest = closest_at(t);
+      double cleared = cleared_along_closest(t, until, closest);
+      if (cleared < until && closest.interior(kind_)) cleared = std::max(cleared, cleared_by_plane(t, until));
       if (cleared >= until) {
         t = until;
         break;
       }
-      Vector3<double> at_t[3][2];
-      for (int i = 0; i < 3; ++i) at_t[i][0] = at_t[i][1] = interpolate(position_[i][0], position_[i][1], t);
-      const double distance = std::sqrt(distance2_at(kind_, at_t, 0, error.relative, error.floor)) * shrink;
-      const double gap = (distance - settings_.min_distance * SeparationErrors::grow) * shrink;
-      if (!(gap > 0)) {
-        advanced_ = std::max(advanced_, t);
-        return witnessed_at(t);
+      // A step that cleared anything cleared t itself, and outruns m's
+      // nearly always: the certified distance, the dearest part of a step,
+      // only where neither did.
+      double step_length = cleared - t;
+      if (!(step_length > 0)) {
+        Vector3<double> at_t[3][2];
+        for (int i = 0; i < 3; ++i) at_t[i][0] = at_t[i][1] = closest.position[i];
+        const double distance = std::sqrt(distance2_at(kind_, at_t, 0, error.relative, error.floor)) * shrink;
+        const double gap = (distance - settings_.min_distance * SeparationErrors::grow) * shrink;
+        if (!(gap > 0)) {
+          advanced_ = std::max(advanced_, t);
+          return witnessed_at(t);
+        }
+        // Whole grid steps: t is on the grid, so the sum is exact.
+        step_length = std::floor(gap / motion_ * shrink * grid) / grid;
       }
-      // Whole grid steps: t is on the grid, so the sum is exact.
-      const double step_length = std::max(std::floor(gap / motion_ * shrink * grid) / grid, cleared - t);
       const double next = std::min(t + step_length, until);
       if (step_length < settings_.toi_tolerance) {
         const double ahead = std::min(t + std::floor(settings_.toi_tolerance * grid) / grid, until);
@@ -413,19 +492,6 @@ class InclusionSolver {
   // VF F = p - u b - v c over the triangle u, v >= 0, u + v <= 1; EE
   // F = u a1 - b0 - v (b1 - b0) over [0, 1]^2 (positions relative to x1).
   std::array<double, 2> closest_parameters(const std::array<V3, 3>& x) const {
-    const auto value = [&](double u, double v) {
-      const std::array<double, 3> w = weights(kind_, u, v);
-      const V3 f = weighted_sum(w, x);
-      return dot(f, f);
-    };
-    // Where F is smallest along the segment from F(start) in direction d, clamped.
-    std::array<double, 2> best{0, 0};
-    double best_value = value(0, 0);
-    const auto consider = [&](double u, double v) {
-      u = std::clamp(u, 0.0, 1.0), v = std::clamp(v, 0.0, 1.0);
-      if (kind_ == Kind::vertex_face && u + v > 1) v = 1 - u;
-      if (const double f = value(u, v); f < best_value) best_value = f, best = {u, v};
-    };
     const std::array<double, 3> at_origin = weights(kind_, 0, 0);
     V3 direction[2];
     for (int d = 0; d < 2; ++d) {
@@ -436,8 +502,27 @@ class InclusionSolver {
     const V3 origin = weighted_sum(at_origin, x);
     const double aa = dot(direction[0], direction[0]), ab = dot(direction[0], direction[1]),
                  bb = dot(direction[1], direction[1]), ao = dot(direction[0], origin),
-                 bo = dot(direction[1], origin), determinant = aa * bb - ab * ab;
-    if (determinant > 0) consider((ab * bo - bb * ao) / determinant, (ab * ao - aa * bo) / determinant);
+                 bo = dot(direction[1], origin), oo = dot(origin, origin), determinant = aa * bb - ab * ab;
+    // |F|^2 = |origin + u direction_0 + v direction_1|^2, a convex quadratic.
+    const auto value = [&](double u, double v) {
+      return oo + 2 * (u * ao + v * bo) + u * (u * aa + 2 * v * ab) + v * v * bb;
+    };
+    const auto inside = [&](double u, double v) {
+      return u >= 0 && v >= 0 && (kind_ == Kind::vertex_face ? u + v <= 1 : u <= 1 && v <= 1);
+    };
+    if (determinant > 0) {
+      // Its unconstrained minimum: where it lies inside the domain, the answer.
+      const double u = (ab * bo - bb * ao) / determinant, v = (ab * ao - aa * bo) / determinant;
+      if (inside(u, v)) return {u, v};
+    }
+    // Else on the domain's boundary: where F is smallest along each side, clamped.
+    std::array<double, 2> best{0, 0};
+    double best_value = value(0, 0);
+    const auto consider = [&](double u, double v) {
+      u = std::clamp(u, 0.0, 1.0), v = std::clamp(v, 0.0, 1.0);
+      if (kind_ == Kind::vertex_face && u + v > 1) v = 1 - u;
+      if (const double f = value(u, v); f < best_value) best_value = f, best = {u, v};
+    };
     // Along each side of the domain: u or v fixed at 0 or 1 (VF: the third side u + v = 1).
     if (aa > 0) consider(-ao / aa, 0), consider(-(ao + ab) / aa, 1);
     if (bb > 0) consider(0, -bo / bb), consider(1, -(bo + ab) / bb);
@@ -457,6 +542,19 @@ class InclusionSolver {
   // line pair) over the interval goes first, as the cubic's signs do
   // without one; its coefficients from interpolated positions.
   bool apart_over(const Endpoints& ends) const {
+    if (plane_apart(ends)) return true;
+    Vector3<double> relative[3][2];
+    for (int i = 0; i < 3; ++i)
+      for (int end = 0; end < 2; ++end) relative[i][end] = ends.position[end][i];
+    const SeparationErrorModel error = separation_error(absolute_error_, settings_.certified);
+    return error.enabled &&
+           separation_filter_culls_within(kind_, relative, error.relative, error.floor, settings_.min_distance);
+  }
+
+  // The sign test with a separation over the interval, its coefficients
+  // from interpolated positions, the normal's length bounded by its
+  // Euclidean norm (sign_filter.hpp).
+  bool plane_apart(const Endpoints& ends) const {
     Vector3<double> relative[3][2];
     double largest[3][2];
     for (int i = 0; i < 3; ++i)
@@ -464,12 +562,8 @@ class InclusionSolver {
         relative[i][end] = ends.position[end][i];
         largest[i][end] = largest_magnitude(relative[i][end]);
       }
-    if (plane_distance_culls(kind_, relative, largest, cubic_error_.floor, settings_.certified,
-                             settings_.min_distance, cubic_error_.relative))
-      return true;
-    const SeparationErrorModel error = separation_error(absolute_error_, settings_.certified);
-    return error.enabled &&
-           separation_filter_culls_within(kind_, relative, error.relative, error.floor, settings_.min_distance);
+    return plane_distance_culls(kind_, relative, largest, cubic_error_.floor, settings_.certified,
+                                settings_.min_distance, cubic_error_.relative, true);
   }
 
   // The first contact lies in `time` at the cubic's first root there (a

@@ -124,8 +124,9 @@ bool decide_within_by_pairs(Kind kind, const Query& query, const ScaledQuery& sc
   const double separation = to_scaled_length(scaled, options.min_distance);
   const double toi_width = located_toi_width(options, decider);
   PlanarOutcome outcome;
-  const std::optional<int> axis = lab.planar_path ? exact::exact_plane_axis(query) : std::nullopt;
-  if (axis && exact::shares_coordinate(query, *axis))
+  // Axis planes only (exact_plane_axis's tilted planes do not keep distances).
+  const std::optional<int> axis = lab.planar_path ? exact::shared_axis(query) : std::nullopt;
+  if (axis)
     outcome = solve_planar_within(shape, scaled, *axis, separation, options.tmax, toi_width);
   else if (lab.point_search && is_point_shape(shape))
     outcome = solve_point_within(shape, scaled, separation, options.tmax, toi_width);

@@ -94,10 +94,14 @@ auto sign_filter_culls(const Vector3<T> (&relative)[3][2], const T (&largest)[3]
 // once over T for the scalar path and the lanes.
 // The bound s max |n_j|_1 that |d| must exceed, grown for the rounding of
 // the thresholds made from it; test.floor is the coefficients' floor.
+// `euclidean`: s max |n_j| instead, up to sqrt(3) times sharper, for the
+// solver's short intervals where |d| / |n| nears s (its square root costs
+// the lanes more than it culls there).
 template <class T>
 T plane_reach(Kind kind, const Vector3<T> (&r)[3][2], const T (&largest)[3][2], const SignTest<T>& test,
-              bool certified, T separation) {
+              bool certified, T separation, bool euclidean = false) {
   using std::abs;
+  using std::sqrt;
   // n = a x b, both linear: VF a = x21, b = x31; EE a = x21, b = x43.
   const bool vertex_face = kind == Kind::vertex_face;
   const Vector3<T> b0 = vertex_face ? r[1][0] : r[2][0] - r[1][0];
@@ -116,8 +120,18 @@ T plane_reach(Kind kind, const Vector3<T> (&r)[3][2], const T (&largest)[3][2], 
                                 relative * na1 * nb1 + test.floor};
   T largest_normal(0);
   for (int j = 0; j < 3; ++j) {
-    const T l1 = abs(control[j].x) + abs(control[j].y) + abs(control[j].z) + T(3) * component_error[j];
-    largest_normal = max_of(largest_normal, j == 1 ? T(0.5) * l1 : l1);
+    T length;
+    if (euclidean) {
+      // Each component's magnitude grown by its error; the squares, their
+      // sum and the root round by less than 4 u, and where the squares
+      // underflow (by at most 3 2^-1074 in all) the root by below 2^-530.
+      const T x = abs(control[j].x) + component_error[j], y = abs(control[j].y) + component_error[j],
+              z = abs(control[j].z) + component_error[j];
+      length = sqrt(x * x + y * y + z * z) * T(1 + 4 * kUnitRoundoff) + T(0x1p-530);
+    } else {
+      length = abs(control[j].x) + abs(control[j].y) + abs(control[j].z) + T(3) * component_error[j];
+    }
+    largest_normal = max_of(largest_normal, j == 1 ? T(0.5) * length : length);
   }
   // The threshold's sums and products round by less than 8 u.
   return separation * largest_normal * T(1 + 8 * kUnitRoundoff);
@@ -126,9 +140,9 @@ T plane_reach(Kind kind, const Vector3<T> (&r)[3][2], const T (&largest)[3][2], 
 template <class T>
 auto plane_distance_culls(Kind kind, const Vector3<T> (&r)[3][2], const T (&largest)[3][2],
                           T coefficient_floor, bool certified, T separation,
-                          double coefficient_relative = coefficient_error(0.0).relative) {
+                          double coefficient_relative = coefficient_error(0.0).relative, bool euclidean = false) {
   const SignTest<T> test = sign_test(r, largest, coefficient_floor, certified, coefficient_relative);
-  const T reach = plane_reach(kind, r, largest, test, certified, separation);
+  const T reach = plane_reach(kind, r, largest, test, certified, separation, euclidean);
   // The coefficients are the Bernstein ones times (1, 3, 3, 1).
   const T weight[4] = {T(1), T(3), T(3), T(1)};
   auto positive = test.cubic.coefficient[0] > reach + test.relative * test.cubic.magnitude[0] + test.floor;
