@@ -41,9 +41,9 @@ inline constexpr double kExactToiWidth = 0x1p-40;
 // One query decided alone through the batch call of the scalar path, which
 // also says whether its hit is a decision (Counters::undecided). The box
 // search at d > 0 gets 2^14 boxes rather than 2^20: where the searches of
-// §5a stay uncertain (an edge of zero length at t0, docs/design.md §5a "With
-// a separation") it may spend seconds on one query under the sanitizers,
-// and a query it cannot settle is an undecided hit, which the checks allow.
+// §5a stay uncertain (docs/design.md §5a, "With a separation") it may spend
+// seconds on one query under the sanitizers, and a query it cannot settle
+// is an undecided hit, which the checks allow.
 inline constexpr std::int64_t kBoxBudget = 1 << 14;
 
 struct Decision {

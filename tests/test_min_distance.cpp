@@ -223,6 +223,31 @@ TEST(SquaredDistance, EqualsTheDistanceKnownByConstruction) {
   }
 }
 
+// From fuzz_point_kinds: the labeller on a query scaled by 2^509, whose
+// squared speeds (2^1026) lie beyond the doubles. Its Lipschitz bound was
+// the Rational of an infinite double, which traps inside GMP (SIGFPE). Now
+// the bound is +inf: a witness still labels a hit, nothing certifies a miss.
+TEST(ExactLabels, QueriesNearTheTopOfTheDoubleRange) {
+  const double s = 0x1p509;
+  Options options;
+  options.mode = Mode::exact;
+  options.min_distance = s / 2;
+  // A point crossing a static segment at t = 1/2, within s/2 of it from t = 15/32.
+  const Query crossing = make_query(Kind::vertex_edge, std::vector<Vec3>{{8 * s, 0, 0}, {0, -s, 0}, {0, s, 0}},
+                                    std::vector<Vec3>{{-8 * s, 0, 0}, {0, -s, 0}, {0, s, 0}});
+  const testing::Labelled hit = testing::label(Kind::edge_edge, crossing, options.min_distance);
+  ASSERT_EQ(hit.label, testing::Label::hit);
+  const QueryResult result = query_ccd(Kind::vertex_edge, crossing, options);
+  ASSERT_TRUE(result.hit);
+  EXPECT_LE(result.toi, hit.witness);
+  EXPECT_GE(result.toi, 15.0 / 32 - 0x1p-40);
+  // The same point passing 3s above the segment: never within s/2.
+  const Query passing = make_query(Kind::vertex_edge, std::vector<Vec3>{{8 * s, 0, 3 * s}, {0, -s, 0}, {0, s, 0}},
+                                   std::vector<Vec3>{{-8 * s, 0, 3 * s}, {0, -s, 0}, {0, s, 0}});
+  EXPECT_NE(testing::label(Kind::edge_edge, passing, options.min_distance).label, testing::Label::hit);
+  EXPECT_FALSE(query_ccd(Kind::vertex_edge, passing, options).hit);
+}
+
 TEST(BadOptions, AreRefusedByEveryCall) {
   const Query q = vertex_dipping_to(1);
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
