@@ -597,7 +597,9 @@ TEST(PointSearch, AgreesWithExactLabelsAndTheGenericSearch) {
         const QueryResult exact = query_ccd(kind, query, options);
         const QueryResult searched = lab::query_ccd(kind, query, options, generic);
         ASSERT_EQ(exact.hit, searched.hit);
-        if (exact.hit) EXPECT_NEAR(exact.toi, searched.toi, 2 * 0x1p-40);
+        if (exact.hit) {
+          EXPECT_NEAR(exact.toi, searched.toi, 2 * 0x1p-40);
+        }
         options.mode = Mode::conservative;
         const QueryResult conservative = query_ccd(kind, query, options);
         ASSERT_EQ(conservative.hit, exact.hit);
@@ -612,7 +614,9 @@ TEST(PointSearch, AgreesWithExactLabelsAndTheGenericSearch) {
         if (truth.label == testing::Label::unlabelled) continue;
         ++labelled;
         ASSERT_EQ(exact.hit, truth.label == testing::Label::hit);
-        if (exact.hit) EXPECT_LE(exact.toi, truth.witness);
+        if (exact.hit) {
+          EXPECT_LE(exact.toi, truth.witness);
+        }
       }
     }
   EXPECT_GT(hits, queries / 6);
