@@ -4,7 +4,9 @@
 //
 //   make_seed_corpora SHARED_DATA_DIR OUTPUT_DIR
 //
-// writes OUTPUT_DIR/{query_csv,truth,pairs,ply,query_kernels}/.
+// writes OUTPUT_DIR/{query_csv,truth,pairs,ply,query_kernels}/, and the
+// built-in seeds of the targets whose inputs need no data
+// (OUTPUT_DIR/{query_kernels,planar,point_kinds}/).
 
 #include <algorithm>
 #include <array>
@@ -136,6 +138,73 @@ void grid_kernel_seeds(const fs::path& out) {
   }
 }
 
+// ---- planar and point kinds: built in --------------------------------------
+
+// fuzz_planar.cpp's records: plane, separation index, origin, u, v, then the
+// eight points' in-plane coordinates (units of 1/16).
+std::string planar_record(std::uint8_t plane, std::uint8_t separation, const std::array<std::int8_t, 9>& frame,
+                          const std::array<std::int8_t, 16>& in_plane) {
+  std::string bytes{static_cast<char>(plane), static_cast<char>(separation)};
+  for (const std::int8_t c : frame) bytes += static_cast<char>(c);
+  for (const std::int8_t c : in_plane) bytes += static_cast<char>(c);
+  return bytes;
+}
+
+// An event of each kind at t = 1/2, on the floor (z = 0, its axis plane) at
+// d = 1/2 and on the tilted plane z = x + 2y at d = 0: a vertex crossing a
+// triangle's edge, segments crossing, a point through a segment, two points
+// passing.
+void planar_seeds(const fs::path& out) {
+  const std::array<std::int8_t, 9> floor = {0, 0, 0, 1, 0, 0, 0, 1, 0}, tilted = {0, 0, 0, 1, 0, 1, 0, 1, 2};
+  const std::array<std::array<std::int8_t, 16>, 4> events = {{
+      {-16, 16, 0, 0, 64, 0, 0, 64, 16, 16, 0, 0, 64, 0, 0, 64},        // vf: p, a, b, c at t0, then t1
+      {-32, 0, 32, 0, 0, 16, 0, 48, -32, 0, 32, 0, 0, -48, 0, -16},    // ee
+      {8, 16, 8, 16, 0, 0, 16, 0, 8, -16, 8, -16, 0, 0, 16, 0},        // ve: p, p, e0, e1
+      {32, 0, 32, 0, 0, 0, 0, 0, -32, 0, -32, 0, 0, 0, 0, 0},          // vv: p, p, q, q
+  }};
+  constexpr std::uint8_t kFloor = 3, kTilted = 0, kHalf = 4, kZero = 0;
+  constexpr std::uint8_t kPerQuery = 8, kExact = 4;
+  for (std::uint8_t kind = 0; kind < 4; ++kind) {
+    const std::string name = std::string("planar-") + batchccd::to_string(static_cast<batchccd::Kind>(kind));
+    const std::string on_floor = planar_record(kFloor, kHalf, floor, events[kind]);
+    const std::string on_tilted = planar_record(kTilted, kZero, tilted, events[kind]);
+    const auto header = [&](std::uint8_t flags, std::uint8_t tmax) {
+      return std::string{static_cast<char>(kind | flags), static_cast<char>(tmax)};
+    };
+    write_bytes(out / "planar" / (name + "-floor"), header(0, 255) + on_floor);
+    write_bytes(out / "planar" / (name + "-tilted-exact-tmax"), header(kExact, 127) + on_tilted);
+    write_bytes(out / "planar" / (name + "-both"), header(kPerQuery, 255) + on_floor + on_tilted);
+    // Four records, the most an input holds (libFuzzer takes its longest seed as the length to reach).
+    write_bytes(out / "planar" / (name + "-four"),
+                header(kPerQuery | kExact, 191) + on_floor + on_tilted + on_tilted + on_floor);
+  }
+}
+
+// fuzz_point_kinds.cpp's inputs: a point falling past a segment (or a
+// point), placed on it at each contact time, flat and nearly flat, at d = 0
+// and d = 2^-6, and once scaled by 2^-400.
+void point_kind_seeds(const fs::path& out) {
+  const std::array<std::int8_t, 18> points = {8, 8, 16, 0, 0, 0, 16, 16, 0,     // p, e0, e1 at t0
+                                              8, 10, -16, 16, 0, 0, 0, 16, 0};  // at t1: e0, e1 swap ends
+  for (std::uint8_t kind = 0; kind < 2; ++kind)
+    for (std::uint8_t contact = 0; contact <= 4; ++contact)
+      for (const int flatness : {0, 8})
+        for (const int separation : {0, 3}) {
+          const std::uint8_t flags = static_cast<std::uint8_t>(kind | contact << 1 | 2 << 4);
+          std::string bytes{static_cast<char>(flags), static_cast<char>(contact == 2 ? 63 : 255),
+                            static_cast<char>(separation), static_cast<char>(flatness), 0};
+          for (const std::int8_t c : points) bytes += static_cast<char>(c);
+          const std::string name = std::string("point-") + (kind ? "vv" : "ve") + "-contact-" +
+                                   std::to_string(contact) + "-flat-" + std::to_string(flatness) + "-d-" +
+                                   std::to_string(separation);
+          write_bytes(out / "point_kinds" / name, bytes);
+          if (contact == 3) {
+            bytes[4] = static_cast<char>(-100);  // 2^-400
+            write_bytes(out / "point_kinds" / (name + "-tiny"), bytes);
+          }
+        }
+}
+
 // ---- truth and candidate lists ------------------------------------------------
 
 void list_seeds(const fs::path& scenes, const fs::path& out) {
@@ -256,6 +325,8 @@ int main(int argc, char** argv) {
   const fs::path out = argv[2];
   try {
     grid_kernel_seeds(out);
+    planar_seeds(out);
+    point_kind_seeds(out);
     if (!fs::is_directory(data)) {
       std::cerr << "make_seed_corpora: no " << data.string() << ": only the built-in seeds\n";
       return 0;

@@ -46,17 +46,25 @@ struct Labelled {
   double size = 0;         // >= the query's size as Options::tolerance measures it
 };
 
-// Certified bounds of sqrt(x2) (x2 exact): the double is nudged until the exact square agrees.
+// Certified bounds of sqrt(x2) (x2 exact): the double is nudged until the
+// exact square agrees. Beyond the doubles' range (x2 above about 2^1024,
+// lengths of queries scaled by 2^500): sqrt(DBL_MAX) below, +inf above
+// (a Rational of an infinite double would trap inside GMP).
 inline double sqrt_below(const Rational& x2) {
   if (sgn(x2) <= 0) return 0;
   double r = std::sqrt(x2.get_d()) * (1 - 0x1p-40);
+  if (!std::isfinite(r)) r = std::sqrt(std::numeric_limits<double>::max()) * (1 - 0x1p-40);
   while (Rational(r) * Rational(r) > x2) r *= 1 - 0x1p-40;
   return r;
 }
 inline double sqrt_above(const Rational& x2) {
   if (sgn(x2) <= 0) return 0;
   double r = std::max(std::sqrt(x2.get_d()) * (1 + 0x1p-40), std::numeric_limits<double>::denorm_min());
-  while (Rational(r) * Rational(r) < x2) r *= 1 + 0x1p-40;
+  if (!std::isfinite(r)) return std::numeric_limits<double>::infinity();
+  while (Rational(r) * Rational(r) < x2) {
+    r *= 1 + 0x1p-40;
+    if (!std::isfinite(r)) return r;
+  }
   return r;
 }
 
@@ -186,7 +194,7 @@ inline Labelled label(Kind kind, const Query& q, double separation) {
       out.witness = times[k];
       return out;
     }
-  certify(kind, q, separation, out);
+  if (std::isfinite(out.lipschitz)) certify(kind, q, separation, out);  // else no cone clears anything
   return out;
 }
 

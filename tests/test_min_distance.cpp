@@ -8,6 +8,7 @@
 #include <fstream>
 #include <limits>
 #include <random>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -17,6 +18,8 @@
 #include "batchccd/ccd.hpp"
 #include "batchccd/io.hpp"
 #include "batchccd/lab.hpp"
+#include "exact/exact_solver.hpp"
+#include "exact/plane_axis.hpp"
 #include "exact_distance.hpp"
 
 namespace batchccd {
@@ -218,6 +221,31 @@ TEST(SquaredDistance, EqualsTheDistanceKnownByConstruction) {
                   squared_distance_at(test.kind, query, Rational(t)).get_d(), 1e-12 * (1 + test.expected))
           << to_string(test.kind) << " t = " << t;
   }
+}
+
+// From fuzz_point_kinds: the labeller on a query scaled by 2^509, whose
+// squared speeds (2^1026) lie beyond the doubles. Its Lipschitz bound was
+// the Rational of an infinite double, which traps inside GMP (SIGFPE). Now
+// the bound is +inf: a witness still labels a hit, nothing certifies a miss.
+TEST(ExactLabels, QueriesNearTheTopOfTheDoubleRange) {
+  const double s = 0x1p509;
+  Options options;
+  options.mode = Mode::exact;
+  options.min_distance = s / 2;
+  // A point crossing a static segment at t = 1/2, within s/2 of it from t = 15/32.
+  const Query crossing = make_query(Kind::vertex_edge, std::vector<Vec3>{{8 * s, 0, 0}, {0, -s, 0}, {0, s, 0}},
+                                    std::vector<Vec3>{{-8 * s, 0, 0}, {0, -s, 0}, {0, s, 0}});
+  const testing::Labelled hit = testing::label(Kind::edge_edge, crossing, options.min_distance);
+  ASSERT_EQ(hit.label, testing::Label::hit);
+  const QueryResult result = query_ccd(Kind::vertex_edge, crossing, options);
+  ASSERT_TRUE(result.hit);
+  EXPECT_LE(result.toi, hit.witness);
+  EXPECT_GE(result.toi, 15.0 / 32 - 0x1p-40);
+  // The same point passing 3s above the segment: never within s/2.
+  const Query passing = make_query(Kind::vertex_edge, std::vector<Vec3>{{8 * s, 0, 3 * s}, {0, -s, 0}, {0, s, 0}},
+                                   std::vector<Vec3>{{-8 * s, 0, 3 * s}, {0, -s, 0}, {0, s, 0}});
+  EXPECT_NE(testing::label(Kind::edge_edge, passing, options.min_distance).label, testing::Label::hit);
+  EXPECT_FALSE(query_ccd(Kind::vertex_edge, passing, options).hit);
 }
 
 TEST(BadOptions, AreRefusedByEveryCall) {
@@ -569,7 +597,9 @@ TEST(PointSearch, AgreesWithExactLabelsAndTheGenericSearch) {
         const QueryResult exact = query_ccd(kind, query, options);
         const QueryResult searched = lab::query_ccd(kind, query, options, generic);
         ASSERT_EQ(exact.hit, searched.hit);
-        if (exact.hit) EXPECT_NEAR(exact.toi, searched.toi, 2 * 0x1p-40);
+        if (exact.hit) {
+          EXPECT_NEAR(exact.toi, searched.toi, 2 * 0x1p-40);
+        }
         options.mode = Mode::conservative;
         const QueryResult conservative = query_ccd(kind, query, options);
         ASSERT_EQ(conservative.hit, exact.hit);
@@ -584,7 +614,9 @@ TEST(PointSearch, AgreesWithExactLabelsAndTheGenericSearch) {
         if (truth.label == testing::Label::unlabelled) continue;
         ++labelled;
         ASSERT_EQ(exact.hit, truth.label == testing::Label::hit);
-        if (exact.hit) EXPECT_LE(exact.toi, truth.witness);
+        if (exact.hit) {
+          EXPECT_LE(exact.toi, truth.witness);
+        }
       }
     }
   EXPECT_GT(hits, queries / 6);
@@ -624,6 +656,50 @@ TEST(PointSearch, ProvesNearlyPlanarMissesWithoutTheExactStage) {
     EXPECT_EQ(with_pairs.counters.hits, without.counters.hits);
     for (std::size_t i = 0; i < queries.size(); ++i) EXPECT_EQ(with_pairs.results[i].hit, without.results[i].hit);
   }
+}
+
+// At separation 0 the pairs' search only proves misses (proves_point_miss).
+// A point that really touches its segment in motion that is not planar
+// leaves the search over (t, u, v) uncertain -- the contact is an equality it
+// cannot certify -- and must then reach the exact stage, never be excluded.
+// Each contact is placed exactly at t = 1/2, at a quarter point of the
+// segment: the exact distance there is 0. (Two points that meet always move
+// in one plane, the planar path's.)
+TEST(PointSearch, NeverExcludesAContactAtZeroSeparation) {
+  std::mt19937_64 random(61);
+  std::uniform_int_distribution<int> coordinate(-64, 64);
+  const auto grid = [&] { return coordinate(random) / 16.0; };
+  int queries = 0, escalated = 0;
+  for (int i = 0; i < 60; ++i) {
+    std::vector<Vec3> start, end;
+    for (int k = 0; k < 3; ++k) {
+      start.emplace_back(grid(), grid(), grid());
+      end.emplace_back(grid(), grid(), grid());
+    }
+    const auto middle = [&](int k) -> Vec3 { return 0.5 * (start[k] + end[k]); };
+    end[0] = 2 * (middle(1) + (i % 5) / 4.0 * (middle(2) - middle(1))) - start[0];
+    const Query query = make_query(Kind::vertex_edge, start, end);
+    if (exact::exact_plane_axis(query)) continue;  // planar: the planar path's, not this search's
+    SCOPED_TRACE(::testing::Message() << "query " << i << " " << ::testing::PrintToString(query.points));
+    ++queries;
+    ASSERT_EQ(testing::squared_distance_at(Kind::edge_edge, query, testing::Rational(1, 2)), 0);
+    const exact::ExactOutcome truth = exact::solve_exactly(Kind::edge_edge, query, true);
+    ASSERT_TRUE(truth.hit);
+    for (Mode mode : {Mode::conservative, Mode::exact}) {
+      Options options;
+      options.mode = mode;
+      BatchResult out;
+      lab::batch_ccd(Kind::vertex_edge, std::span<const Query>(&query, 1), {}, options, {}, out);
+      ASSERT_TRUE(out.results[0].hit) << to_string(mode);
+      EXPECT_LE(out.results[0].toi, truth.toi + 0x1p-40) << to_string(mode);
+      if (mode == Mode::exact) {
+        EXPECT_GE(out.results[0].toi, truth.toi - 0x1p-40);
+        escalated += static_cast<int>(out.counters.exact_escalations);
+      }
+    }
+  }
+  EXPECT_GT(queries, 50);
+  EXPECT_EQ(escalated, queries);  // every one left uncertain by the search over (t, u, v)
 }
 
 // Known times in 3D: a point falling past a tilted segment, and two points.

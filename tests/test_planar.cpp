@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <random>
+#include <span>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -418,6 +419,38 @@ TEST(PlanarWithin, ScaleInvariant) {
       EXPECT_EQ(result.toi, unit.toi);
     }
   }
+}
+
+// From fuzz_planar: a triangle whose corners a and b coincide at t0 (and
+// stay on one line with c), at d = 8. At t0 the on-line clause of the edge
+// a b has all its conditions zero, so no interval [0, w] could exclude it,
+// and the search gave the query to the box search (0.5 s, undecided). The
+// vertex is far from a there, which excludes the clause (condition 5 of
+// PairConditions): the planar search now decides it alone -- with one box
+// for the box search, nothing is left undecided -- and its bracket holds the
+// first time within d exactly.
+TEST(PlanarWithin, EdgeOfZeroLengthAtTheStart) {
+  const Query query{{Vec3{-129, 125, -1}, Vec3{4, 4, -1}, Vec3{4, 4, -1}, Vec3{-12, -12, -1}, Vec3{4, 4, -1},
+                     Vec3{-60, -60, -1}, Vec3{3, 3, -1}, Vec3{4, 4, -1}}};
+  const double separation = 8;
+  const reference::ScaledQuery scaled = reference::scale_query(Kind::vertex_face, query);
+  const reference::PlanarOutcome outcome =
+      reference::solve_planar_within(reference::PlanarShape::triangle_vertex, scaled, *exact::exact_plane_axis(query),
+                                     reference::to_scaled_length(scaled, separation), 1, kExactToiWidth);
+  ASSERT_TRUE(outcome.certain);
+  ASSERT_TRUE(outcome.hit);
+  const testing::Rational d2 = testing::Rational(separation) * separation;
+  EXPECT_LE(testing::squared_distance_at(Kind::vertex_face, query, outcome.toi_upper), d2);
+  EXPECT_GT(testing::squared_distance_at(Kind::vertex_face, query, outcome.toi), d2);
+  EXPECT_LE(outcome.toi_upper - outcome.toi, kExactToiWidth);
+  Options options = options_for(Mode::exact);
+  options.min_distance = separation;
+  options.max_iterations = 1;
+  BatchResult out;
+  lab::batch_ccd(Kind::vertex_face, std::span<const Query>(&query, 1), {}, options, {}, out);
+  EXPECT_EQ(out.counters.undecided, 0);
+  ASSERT_TRUE(out.results[0].hit);
+  EXPECT_EQ(out.results[0].toi, outcome.toi);
 }
 
 // A 2D mesh (positions n x 2) means the mesh lifted to z = 0: every kind,

@@ -504,7 +504,7 @@ class DistanceSearch {
     unsigned clauses = 0;
   };
   static constexpr int kMostPairs = 4;
-  static constexpr int kConditionsPerPair = 5;  // |p-A|, |p-B|, the two dots, the quartic
+  static constexpr int kConditionsPerPair = 6;  // |p-A|, |p-B|, the two dots, the quartic, reach
   static constexpr unsigned kNearA = 1, kNearB = 2, kOnLine = 4;
 
   int pairs(std::array<Pair, kMostPairs>& pair) const {
@@ -530,7 +530,8 @@ class DistanceSearch {
 
   // A pair's conditions over [start, end] (s and e: the points at its
   // ends), each "f >= 0", computed when first asked for: 0 the point within
-  // d of A, 1 of B, 2 and 3 beyond neither end, 4 within d of the line.
+  // d of A, 1 of B, 2 and 3 beyond neither end, 4 within d of the line, 5
+  // within sqrt(d^2 + |B - A|^2) of A (implied by 2, 3 and 4 together).
   class PairConditions {
    public:
     PairConditions(const Pair& pair, const std::array<Point, 4>& s, const std::array<Point, 4>& e,
@@ -565,6 +566,10 @@ class DistanceSearch {
         case 1: return Condition::of(within(b));
         case 2: return Condition::of(dot_of(a, p, a, b));
         case 3: return Condition::of(dot_of(b, p, b, a));
+        case 5: {  // d^2 + |B - A|^2 - |p - A|^2
+          const Quadratic near = within(a), ends = dot_of(a, b, a, b);
+          return Condition::of(Quadratic{near.start + ends.start, near.middle + ends.middle, near.end + ends.end});
+        }
         default: {
           length_ = dot_of(a, b, a, b);
           const Quartic on_line = squared_cross_over(s_[b] - s_[a], s_[p] - s_[a], e_[b] - e_[a], e_[p] - e_[a]);
@@ -608,6 +613,12 @@ class DistanceSearch {
       PairConditions c(pair[i], s, e, squared_separation_);
       for (int j = 0; j < 3; ++j) {
         if (!(pair[i].clauses >> j & 1)) continue;
+        // Within d of the line between the ends, p is within
+        // sqrt(d^2 + |B - A|^2) of A: where it certainly is not, the clause
+        // fails, also where its own conditions all vanish (B = A, a segment
+        // of zero length at an interval's end).
+        const bool on_line = j == 2;
+        if (on_line && c.f(5).sign_over() < 0) continue;
         bool holds_at_start = true, excluded = false;
         int uncertain = 0, which = -1;
         for (const int k : kClauses[j]) {
@@ -622,7 +633,7 @@ class DistanceSearch {
           if (sign == 0) ++uncertain, which = k;
         }
         if (excluded) continue;
-        const bool on_line = j == 2;  // a witness there needs |B - A| > 0
+        // A witness on the line needs |B - A| > 0.
         if (holds_at_start && (!on_line || c.length().start.certainly_positive()))
           return {PlanarOutcome{true, true, start, start}, false};
         const bool simple = uncertain == 1 && c.f(which).rises_once() && (!on_line || sign_over(c.length()) > 0);
