@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "batchccd/batchccd.hpp"
+#include "expect_refused.hpp"
 
 namespace {
 
@@ -330,18 +331,6 @@ void expect_same(const batchccd::QueryResult& result, const batchccd::QueryResul
   EXPECT_EQ(result.hit, expected.hit);
   EXPECT_EQ(result.toi, expected.toi);
   EXPECT_EQ(result.status, expected.status);
-}
-
-// The message names the call and the argument.
-template <class Call>
-void expect_refused(Call call, const std::string& call_name, const std::string& argument) {
-  try {
-    call();
-    ADD_FAILURE() << "accepted; expected " << call_name << " to refuse " << argument;
-  } catch (const std::invalid_argument& error) {
-    const std::string message = error.what();
-    EXPECT_NE(message.find(call_name + ": " + argument + " "), std::string::npos) << message;
-  }
 }
 
 // Vec3, expressions, blocks and braced lists in one call: the same answer.

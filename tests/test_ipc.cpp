@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "batchccd/batchccd.hpp"
+#include "expect_refused.hpp"
 
 namespace {
 
@@ -226,18 +227,6 @@ TEST(IpcPlanar, EveryKindOfVector) {
   toi = -1;
   EXPECT_TRUE(ipc::point_edge_ccd(p_t0, dynamic_e0, e1, dynamic_p_t1, e0, ref_e1, toi));
   EXPECT_EQ(toi, expected);
-}
-
-// The message names the call and the argument.
-template <class Call>
-void expect_refused(Call call, const std::string& call_name, const std::string& argument) {
-  try {
-    call();
-    ADD_FAILURE() << "accepted; expected " << call_name << " to refuse " << argument;
-  } catch (const std::invalid_argument& error) {
-    const std::string message = error.what();
-    EXPECT_NE(message.find(call_name + ": " + argument + " "), std::string::npos) << message;
-  }
 }
 
 TEST(IpcPlanar, LengthsThatDoNotFitAreRefusedAtRunTime) {
