@@ -47,8 +47,11 @@ enum class Mode {
   // exclusion of every time in [0, tmax]; a query neither settles within
   // 2^-40 of its size (the primitives' closest approach lies within
   // [min_distance, min_distance + 2^-40 size]) is reported as a hit, never
-  // missed, and counted in Counters::undecided. Its TOI is then at most
-  // 2^-40 before the first time they come within that band's upper end.
+  // missed, and counted in Counters::undecided. With min_distance > 0 a
+  // hit's TOI, decided or not, is never after the first time the primitives
+  // come within min_distance, and at most 2^-40 before the first time they
+  // come within that band's upper end (on a slow approach that can be
+  // several times 2^-40 before the distance reaches min_distance).
   exact,
 };
 
