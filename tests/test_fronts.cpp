@@ -293,6 +293,17 @@ static_assert(!VertexEdgeTakes<Vector2d, Vec3> && !VertexEdgeTakes<Vec3, Vector2
 static_assert(VertexVertexTakes<Vector2d> && VertexVertexTakes<Vec3> && VertexVertexTakes<RefXd> &&
               VertexVertexTakes<Vec3, VectorXd>);
 static_assert(!VertexVertexTakes<Vector2d, Vec3> && !VertexVertexTakes<Eigen::Vector4d>);
+// Tight Inclusion's names take the same 3D points.
+template <class P, class Q = P>
+concept TightInclusionTakes = requires(const P& p, const Q& q, double toi, double output) {
+  batchccd::ticcd::vertexFaceCCD(p, q, q, q, p, q, q, q, batchccd::ticcd::Array3::Zero(), 0.0, toi, 1e-6, 1.0, 100,
+                                 output);
+  batchccd::ticcd::edgeEdgeCCD(p, q, q, q, p, q, q, q, batchccd::ticcd::Array3::Zero(), 0.0, toi, 1e-6, 1.0, 100,
+                               output);
+};
+static_assert(TightInclusionTakes<Vec3> && TightInclusionTakes<VectorXd> && TightInclusionTakes<Vec3, MapXd>);
+static_assert(!TightInclusionTakes<Vector2d> && !TightInclusionTakes<Vec3, Vector2d> &&
+              !TightInclusionTakes<Eigen::Vector4d>);
 // Braced lists: three numbers are a point; two are not (a Vec3 would take
 // {1, 2} as its sizes and leave its coordinates unset), nor are four.
 template <class Number>
@@ -437,6 +448,13 @@ TEST(PerKindCalls, LengthsThatDoNotFitAreRefusedAtRunTime) {
   expect_refused([&] { batchccd::vertex_vertex_ccd(a, spatial, planar, a); }, "batchccd::vertex_vertex_ccd", "p_t1");
   expect_refused([&] { batchccd::vertex_vertex_ccd(planar, planar, planar, spatial); },
                  "batchccd::vertex_vertex_ccd", "q_t1");
+  // Tight Inclusion's names: 3D only, every argument checked.
+  const batchccd::ticcd::Array3 err(-1, -1, -1);
+  double toi = 0, output = 0;
+  expect_refused([&] { batchccd::ticcd::vertexFaceCCD(a, a, a, a, a, a, a, planar, err, 0.0, toi, 1e-6, 1.0, 100, output); },
+                 "batchccd::ticcd::vertexFaceCCD", "face_vertex2_end");
+  expect_refused([&] { batchccd::ticcd::edgeEdgeCCD(four, a, a, a, a, a, a, a, err, 0.0, toi, 1e-6, 1.0, 100, output); },
+                 "batchccd::ticcd::edgeEdgeCCD", "edge0_vertex0_start");
 }
 
 }  // namespace

@@ -22,6 +22,11 @@
 // Bad input: std::invalid_argument when ms is negative or not finite, t_max
 // is not in (0, 1] or tolerance is not positive and finite. A NaN or
 // infinite coordinate returns true with toi = 0.
+// Points: Eigen vectors of three doubles (Tight Inclusion's Vector3d, maps,
+// expressions, a dynamic vector of length 3); a fixed length other than 3
+// does not compile and a dynamic one throws std::invalid_argument naming
+// the argument (point_arguments.hpp), so no call reads past a vector.
+#include "batchccd/point_arguments.hpp"
 #include "batchccd/query.hpp"
 
 namespace batchccd::ticcd {
@@ -29,18 +34,57 @@ namespace batchccd::ticcd {
 using Vector3 = Vec3;
 using Array3 = Eigen::Array3d;
 
-bool vertexFaceCCD(const Vector3& vertex_start, const Vector3& face_vertex0_start,
-                   const Vector3& face_vertex1_start, const Vector3& face_vertex2_start,
-                   const Vector3& vertex_end, const Vector3& face_vertex0_end,
-                   const Vector3& face_vertex1_end, const Vector3& face_vertex2_end,
-                   const Array3& err, double ms, double& toi, double tolerance, double t_max,
-                   long max_itr, double& output_tolerance);
+namespace detail {
+// Both calls, once their points are a query.
+bool decide(const char* call, Kind kind, const Query& query, double ms, double& toi, double tolerance,
+            double t_max, long max_itr, double& output_tolerance);
+using batchccd::detail::BracedPoint;
+using batchccd::detail::read_point;
+}  // namespace detail
 
-bool edgeEdgeCCD(const Vector3& edge0_vertex0_start, const Vector3& edge0_vertex1_start,
-                 const Vector3& edge1_vertex0_start, const Vector3& edge1_vertex1_start,
-                 const Vector3& edge0_vertex0_end, const Vector3& edge0_vertex1_end,
-                 const Vector3& edge1_vertex0_end, const Vector3& edge1_vertex1_end,
-                 const Array3& err, double ms, double& toi, double tolerance, double t_max,
-                 long max_itr, double& output_tolerance);
+template <class P0 = detail::BracedPoint, class P1 = detail::BracedPoint, class P2 = detail::BracedPoint,
+          class P3 = detail::BracedPoint, class P4 = detail::BracedPoint, class P5 = detail::BracedPoint,
+          class P6 = detail::BracedPoint, class P7 = detail::BracedPoint>
+  requires SpatialPoints<P0, P1, P2, P3, P4, P5, P6, P7>
+bool vertexFaceCCD(const P0& vertex_start, const P1& face_vertex0_start, const P2& face_vertex1_start,
+                   const P3& face_vertex2_start, const P4& vertex_end, const P5& face_vertex0_end,
+                   const P6& face_vertex1_end, const P7& face_vertex2_end, const Array3& /*err*/, double ms,
+                   double& toi, double tolerance, double t_max, long max_itr, double& output_tolerance) {
+  constexpr const char* call = "batchccd::ticcd::vertexFaceCCD";
+  const batchccd::detail::PointArgument points[] = {
+      detail::read_point("vertex_start", vertex_start),
+      detail::read_point("face_vertex0_start", face_vertex0_start),
+      detail::read_point("face_vertex1_start", face_vertex1_start),
+      detail::read_point("face_vertex2_start", face_vertex2_start),
+      detail::read_point("vertex_end", vertex_end),
+      detail::read_point("face_vertex0_end", face_vertex0_end),
+      detail::read_point("face_vertex1_end", face_vertex1_end),
+      detail::read_point("face_vertex2_end", face_vertex2_end)};
+  return detail::decide(call, Kind::vertex_face,
+                        batchccd::detail::query_from_points(call, Kind::vertex_face, points), ms, toi, tolerance,
+                        t_max, max_itr, output_tolerance);
+}
+
+template <class P0 = detail::BracedPoint, class P1 = detail::BracedPoint, class P2 = detail::BracedPoint,
+          class P3 = detail::BracedPoint, class P4 = detail::BracedPoint, class P5 = detail::BracedPoint,
+          class P6 = detail::BracedPoint, class P7 = detail::BracedPoint>
+  requires SpatialPoints<P0, P1, P2, P3, P4, P5, P6, P7>
+bool edgeEdgeCCD(const P0& edge0_vertex0_start, const P1& edge0_vertex1_start, const P2& edge1_vertex0_start,
+                 const P3& edge1_vertex1_start, const P4& edge0_vertex0_end, const P5& edge0_vertex1_end,
+                 const P6& edge1_vertex0_end, const P7& edge1_vertex1_end, const Array3& /*err*/, double ms,
+                 double& toi, double tolerance, double t_max, long max_itr, double& output_tolerance) {
+  constexpr const char* call = "batchccd::ticcd::edgeEdgeCCD";
+  const batchccd::detail::PointArgument points[] = {
+      detail::read_point("edge0_vertex0_start", edge0_vertex0_start),
+      detail::read_point("edge0_vertex1_start", edge0_vertex1_start),
+      detail::read_point("edge1_vertex0_start", edge1_vertex0_start),
+      detail::read_point("edge1_vertex1_start", edge1_vertex1_start),
+      detail::read_point("edge0_vertex0_end", edge0_vertex0_end),
+      detail::read_point("edge0_vertex1_end", edge0_vertex1_end),
+      detail::read_point("edge1_vertex0_end", edge1_vertex0_end),
+      detail::read_point("edge1_vertex1_end", edge1_vertex1_end)};
+  return detail::decide(call, Kind::edge_edge, batchccd::detail::query_from_points(call, Kind::edge_edge, points),
+                        ms, toi, tolerance, t_max, max_itr, output_tolerance);
+}
 
 }  // namespace batchccd::ticcd
