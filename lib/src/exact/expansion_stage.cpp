@@ -408,6 +408,21 @@ void narrow_finer(const Polynomial4& cubic, Root& root, int bits) {
   root.fine_width = cell;
 }
 
+// p scaled by a power of two (its roots and signs unchanged) to a largest
+// term near 1; false when a nonzero coefficient then has a term below
+// `floor` (p is left partly scaled: the caller gives up on it).
+bool scaled_to_unit(Polynomial4& p, double floor) {
+  double largest = 0;
+  for (int i = 0; i < p.size; ++i) largest = std::max(largest, p.c[i].largest_term());
+  if (largest == 0) return true;
+  const double factor = std::ldexp(1.0, -std::ilogb(largest));
+  for (int i = 0; i < p.size; ++i) {
+    p.c[i] = p.c[i] * factor;
+    if (!p.c[i].is_zero() && p.c[i].smallest_term() < floor) return false;
+  }
+  return true;
+}
+
 // lc(b)^k a reduced modulo b: a remainder of a by b up to a nonzero factor,
 // without division, so exact in expansions.
 //
@@ -417,14 +432,7 @@ void narrow_finer(const Polynomial4& cubic, Root& root, int bits) {
 // above 2^-480: then no product falls below 2^-960 and stays exact.
 // Otherwise TooLong: integers decide.
 void scale_for_products(Polynomial4& p) {
-  double largest = 0;
-  for (int i = 0; i < p.size; ++i) largest = std::max(largest, p.c[i].largest_term());
-  if (largest == 0) return;
-  const double factor = std::ldexp(1.0, -std::ilogb(largest));
-  for (int i = 0; i < p.size; ++i) {
-    p.c[i] = p.c[i] * factor;
-    if (!p.c[i].is_zero() && p.c[i].smallest_term() < 0x1p-480) throw Value::TooLong{};
-  }
+  if (!scaled_to_unit(p, 0x1p-480)) throw Value::TooLong{};
 }
 
 Polynomial4 pseudo_remainder(Polynomial4 a, Polynomial4 b) {
@@ -690,7 +698,7 @@ class PlanarContact {
   // them falls below 2^-1010, and all stay exact. nullopt otherwise.
   static std::optional<int> sign_by_remainder(Polynomial4 q, Polynomial4 p, const Root& root) {
     const int degree = p.degree();
-    if (degree < 1 || degree > 2 || q.degree() > 2 || !scaled_for_remainder(p) || !scaled_for_remainder(q))
+    if (degree < 1 || degree > 2 || q.degree() > 2 || !scaled_to_unit(p, 0x1p-150) || !scaled_to_unit(q, 0x1p-150))
       return std::nullopt;
     const auto coefficient = [](const Polynomial4& polynomial, int i) {
       return i < polynomial.size ? polynomial.c[i] : Value();
@@ -713,20 +721,6 @@ class PlanarContact {
       r_above_rho = p_at_rho == root.sign_after_low ? 1 : -1;  // p's sign below r: rho is below
     }
     return a.sign() * alpha.sign() * r_above_rho;
-  }
-
-  // p scaled by a power of two to a largest term near 1; false when a
-  // nonzero coefficient has a term below 2^-150 of that.
-  static bool scaled_for_remainder(Polynomial4& p) {
-    double largest = 0;
-    for (int i = 0; i < p.size; ++i) largest = std::max(largest, p.c[i].largest_term());
-    if (largest == 0) return true;
-    const double factor = std::ldexp(1.0, -std::ilogb(largest));
-    for (int i = 0; i < p.size; ++i) {
-      p.c[i] = p.c[i] * factor;
-      if (!p.c[i].is_zero() && p.c[i].smallest_term() < 0x1p-150) return false;
-    }
-    return true;
   }
 
   int axis_;
@@ -752,13 +746,9 @@ std::optional<ExactOutcome> solve(Kind kind, const Query& query, bool need_toi, 
   if (cubic.at(1.0).is_zero()) candidates.push_back({1, 1, true, 0});
 
   for (Root root : candidates) {
-    if (root.low >= tmax && !(root.exact && root.low == tmax)) break;
-    if (!root.exact && root.high > tmax) {  // which side of tmax is it on?
-      if (!on_time_grid(tmax)) return std::nullopt;
-      const int sign = cubic.at(tmax).sign();
-      if (sign == 0) root = {tmax, tmax, true, 0};
-      else if (sign == root.sign_after_low) break;  // after tmax, and so is every later one
-    }
+    const std::optional<bool> after = after_tmax(cubic, root, tmax);
+    if (!after) return std::nullopt;
+    if (*after) break;  // and so is every later root
     // Signs too close to call on the isolating interval may settle on a
     // narrower one.
     std::optional<bool> touches = touches_at(kind, motion, root);
