@@ -194,6 +194,44 @@ TEST(ExpansionStage, DecidesAsIntegersOnContactsOnAnEdgeOrACornerAndBesideThem) 
               exact_contacts.decided, kQueries, near_contacts.decided, near_contacts.hits);
 }
 
+// One axis scaled by 2^exponent: exact, and an affine map, so a contact on
+// an edge stays exactly there while the coordinates spread over binades.
+Query axis_scaled(Query query, int axis, int exponent) {
+  for (Vec3& point : query.points) point[axis] = std::ldexp(point[axis], exponent);
+  return query;
+}
+
+TEST(ExpansionStage, DecidesContactsOnAnEdgeWithCoordinatesSpreadOverManyBinades) {
+  // The zero test's remainder sequence outgrows expansions here (terms of
+  // the coefficients 2^100 and more apart); it must still settle the
+  // contact without leaving the query to the integer stage.
+  std::mt19937_64 random(7);
+  constexpr int kQueries = 200;
+  Tally tally;
+  for (int trial = 0; trial < kQueries / 2; ++trial)
+    for (const Kind kind : {Kind::vertex_face, Kind::edge_edge})
+      expect_as_integers(kind, axis_scaled(boundary_contact(kind, random), trial % 3, -50), 1.0, tally);
+  EXPECT_EQ(tally.decided, kQueries);
+  EXPECT_EQ(tally.hits, kQueries);
+}
+
+TEST(ExpansionStage, TellsASharedFactorElsewhereFromAZeroAtTheRoot) {
+  // A vertex placed on a corner at t = 1/5, then one coordinate moved by
+  // an ulp: a miss, where the cubic and a contact numerator still share a
+  // factor, whose zero is not the root in question. A zero test that took
+  // any common factor for a zero at the root reported a contact at 1/5.
+  // (Found by fuzz_expansion_stage.)
+  const Query query = make_query({Vec3(0, -0x1.b8p+23, -0x1.4p+20), Vec3(-0x1.4p+22, 0x1.2cp+24, 0x1.ccp+24),
+                                  Vec3(0x1.9p+24, 0x1.4p+24, 0x1.98p+24), Vec3(0x1p+22, 0x1p+22, -0x1.7p+22)},
+                                 {Vec3(-0x1.44p+24, 0x1.038p+27, 0x1.dfp+26),
+                                  Vec3(-0x1.ffffffffffffep+17, -0x1p+18, -0x1p+18),
+                                  Vec3(-0x1p+18, -0x1p+18, -0x1p+18), Vec3(-0x1p+21, -0x1p+18, -0x1p+18)});
+  Tally tally;
+  for (const double tmax : {1.0, 0.25}) expect_as_integers(Kind::vertex_face, query, tmax, tally);
+  EXPECT_EQ(tally.hits, 0);
+  EXPECT_GE(tally.decided, 1);  // at tmax = 1/4 the expansions decide
+}
+
 TEST(ExpansionStage, DecidesAsIntegersWithTmaxAndAtEveryScale) {
   std::mt19937_64 random(5);
   Tally tally;

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <span>
 
 // Floating-point expansions (Shewchuk 1997, "Adaptive precision
 // floating-point arithmetic and fast robust geometric predicates"): a real
@@ -217,6 +218,7 @@ class BoundedExpansion {
   // The magnitudes of the largest and the smallest term (0 for zero).
   double largest_term() const { return size_ == 0 ? 0 : std::fabs(terms_[size_ - 1]); }
   double smallest_term() const { return size_ == 0 ? 0 : std::fabs(terms_[0]); }
+  std::span<const double> terms() const { return {terms_.data(), size_}; }  // increasing magnitude
   // The sum, rounded: within a few ulps of it (the terms are compressed).
   double estimate() const {
     double sum = 0;

@@ -4,11 +4,13 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "exact/exact_motion.hpp"
 #include "exact/expansion.hpp"
 #include "exact/plane_axis.hpp"
+#include "exact/polynomial.hpp"
 #include "reference/scaled_query.hpp"
 
 namespace batchccd::exact {
@@ -384,26 +386,44 @@ void narrow_to_grid(const Polynomial4& cubic, Root& root, int bits) {
 }
 
 // Narrows the root, already within a cell of the doubles' grid, to a cell
-// of 2^-bits, bits in (52, 100]: exact signs at low + j 2^-bits, bisection.
+// of 2^-bits, bits in (52, 100]: exact signs at low + j 2^-bits, the first
+// two probes next to Newton's step from low (the cubic and its slope there
+// exact, then rounded: the step is good to about 2^-100 where the root is
+// simple and the cubic's curvature plays no part across 2^-52), bisection
+// after.
 void narrow_finer(const Polynomial4& cubic, Root& root, int bits) {
   if (root.exact) return;
   const double cell = std::ldexp(1.0, -bits);
   if (!root.fine()) root.fine_width = root.high - root.low;
   std::uint64_t low = static_cast<std::uint64_t>(std::ldexp(root.fine_low, bits));
   std::uint64_t high = low + static_cast<std::uint64_t>(std::ldexp(root.fine_width, bits));
-  while (high - low > 1) {
-    const std::uint64_t middle = low + (high - low) / 2;
-    const double offset = std::ldexp(static_cast<double>(middle), -bits);  // exact: below 2^53 cells
+  const auto probe = [&](std::uint64_t k) {
+    const double offset = std::ldexp(static_cast<double>(k), -bits);  // exact: below 2^53 cells
     const int sign = cubic.at(Value(root.low) + Value(offset)).sign();
     if (sign == 0) {
       root.exact = true;
       root.fine_low = offset;
       root.fine_width = 0;
-      return;
+    } else if (sign == root.sign_after_low) {
+      low = k;
+    } else {
+      high = k;
     }
-    if (sign == root.sign_after_low) low = middle;
-    else high = middle;
+  };
+  if (high - low > 2) {
+    Polynomial4 slope;
+    slope.size = cubic.size - 1;
+    for (int i = 1; i < cubic.size; ++i) slope.c[i - 1] = cubic.c[i] * static_cast<double>(i);
+    const double step = -cubic.at(root.low).estimate() / slope.at(root.low).estimate();
+    const double guess = std::ldexp(step, bits);
+    if (std::isfinite(guess) && guess > static_cast<double>(low) && guess < static_cast<double>(high)) {
+      const auto near = static_cast<std::uint64_t>(guess);
+      if (near > low) probe(near);
+      if (!root.exact && low == near && near + 1 < high) probe(near + 1);
+    }
   }
+  while (!root.exact && high - low > 1) probe(low + (high - low) / 2);
+  if (root.exact) return;
   root.fine_low = std::ldexp(static_cast<double>(low), -bits);
   root.fine_width = cell;
 }
@@ -423,58 +443,94 @@ bool scaled_to_unit(Polynomial4& p, double floor) {
   return true;
 }
 
-// lc(b)^k a reduced modulo b: a remainder of a by b up to a nonzero factor,
-// without division, so exact in expansions.
+// p times a power of two, with integer coefficients: every term of an
+// expansion is a 53-bit integer times a power of two.
+Polynomial as_integers(const Polynomial4& p) {
+  const auto lowest_bit = [](double term) {
+    int exponent = 0;
+    std::frexp(term, &exponent);
+    return exponent - 53;
+  };
+  int lowest = std::numeric_limits<int>::max();
+  for (int i = 0; i < p.size; ++i)
+    for (const double term : p.c[i].terms()) lowest = std::min(lowest, lowest_bit(term));
+  Polynomial result;
+  for (int i = 0; i < p.size; ++i) {
+    Integer coefficient, part;
+    for (const double term : p.c[i].terms()) {
+      mpz_set_d(part.get(), std::ldexp(term, -lowest_bit(term)));  // a 53-bit integer: exact
+      part.shift_left(static_cast<unsigned long>(lowest_bit(term) - lowest));
+      coefficient += part;
+    }
+    result.coefficients.push_back(std::move(coefficient));
+  }
+  result.trim();
+  return result;
+}
+
+// Whether p vanishes at the root in (low, high) of `defining` (given as
+// integers: as_integers): exactly when their gcd does. The gcd divides
+// `defining`, so the root is its only one in the interval and a simple one:
+// its sign changes there. nullopt when the gcd vanishes at an end.
 //
-// Repeated products lengthen the coefficients' exact values beyond what
-// the analysis above covers, so each operand is scaled by a power of two
-// (its roots unchanged) to a largest term near 1 and must have every term
-// above 2^-480: then no product falls below 2^-960 and stays exact.
-// Otherwise TooLong: integers decide.
-void scale_for_products(Polynomial4& p) {
-  if (!scaled_to_unit(p, 0x1p-480)) throw Value::TooLong{};
-}
-
-Polynomial4 pseudo_remainder(Polynomial4 a, Polynomial4 b) {
-  scale_for_products(a);
-  scale_for_products(b);
-  const int divisor_degree = b.degree();
-  for (int degree = a.degree(); degree >= divisor_degree; degree = a.degree()) {
-    const Value lead = a.c[degree];
-    const int shift = degree - divisor_degree;
-    for (int i = 0; i <= degree; ++i) {
-      a.c[i] = a.c[i] * b.c[divisor_degree];
-      if (i >= shift) a.c[i] = a.c[i] - lead * b.c[i - shift];
-    }  // the leading coefficient cancels exactly
-    scale_for_products(a);
-  }
-  return a;
-}
-
-// Whether p vanishes at the root in (low, high) of the cubic: exactly when
-// gcd(cubic, p) does. The gcd divides the cubic, so the root is its only
-// one in the interval and a simple one: its sign changes there. nullopt
-// when the gcd vanishes at an end.
-std::optional<bool> vanishes_at(const Polynomial4& cubic, const Polynomial4& p, const Root& root) {
-  Polynomial4 divisor = cubic, remainder = pseudo_remainder(p, cubic);
-  while (remainder.degree() >= 0) {
-    Polynomial4 next = pseudo_remainder(divisor, remainder);
-    divisor = std::move(remainder);
-    remainder = std::move(next);
-  }
-  if (divisor.degree() < 1) return false;
-  const int low = divisor.at(root.low).sign(), high = divisor.at(root.high).sign();
+// In integers, not expansions: the remainder sequence's coefficients grow
+// with each step, past the expansions' bounded length where coordinates
+// spread over many binades, and even where they fit the integers' few
+// products of short polynomials cost less.
+std::optional<bool> vanishes_at(const Polynomial& defining, const Polynomial4& p, const Root& root) {
+  const Polynomial common = greatest_common_divisor(defining, as_integers(p));
+  if (common.degree() < 1) return false;
+  const auto sign_at = [&](double t) {  // t on the time grid
+    Integer numerator;
+    mpz_set_d(numerator.get(), std::ldexp(t, kTimeFloor));
+    return sign_at_dyadic(common, numerator, kTimeFloor);
+  };
+  const int low = sign_at(root.low), high = sign_at(root.high);
   if (low == 0 || high == 0) return std::nullopt;
   return low != high;
 }
 
+// Which of a root's contact numerators vanish there (vanishes_at), each
+// asked once: the gcd is the costly step, and the answer does not depend on
+// how narrow the root's interval is. Numerators as polynomials, formed when
+// first asked for.
+class ZerosAtRoot {
+ public:
+  ZerosAtRoot(Kind kind, const Motion<Polynomial4>& motion, const Polynomial4& cubic)
+      : cubic_(cubic), polynomials_(kind, motion) {}
+
+  // Whether numerator k (or, k = kSquared, N = |n|^2) vanishes at the root:
+  // false where the test cannot tell.
+  bool vanishes(int k, const Root& root) { return test(k, root) == true; }
+  bool nonzero(int k, const Root& root) { return test(k, root) == false; }
+  static constexpr int kSquared = 4;
+
+ private:
+  std::optional<bool> test(int k, const Root& root) {
+    if (!known_[k]) {
+      try {
+        if (!cubic_integers_) cubic_integers_ = primitive_part(as_integers(cubic_));
+        known_[k] = vanishes_at(*cubic_integers_, k == kSquared ? polynomials_.squared() : polynomials_[k], root);
+      } catch (const Value::TooLong&) {  // the numerator itself outgrew the expansions
+        return std::nullopt;
+      }
+    }
+    return known_[k];
+  }
+
+  const Polynomial4& cubic_;
+  std::optional<Polynomial> cubic_integers_;  // formed at the first test
+  LazyNumerators<Polynomial4> polynomials_;
+  std::array<std::optional<bool>, 5> known_;
+};
+
 // Whether the primitives touch at the root; nullopt when the signs do not
 // settle it at this width. Each numerator's sign comes from its estimate,
 // else from its exact value at the interval's low end, each against how
-// far it can drift over the interval; given the cubic, a numerator still
+// far it can drift over the interval; given zero tests, a numerator still
 // unsettled is tested for a zero at the root (a contact on the boundary).
 std::optional<bool> touches_at(Kind kind, const Motion<Polynomial4>& motion, const Root& root,
-                               const Polynomial4* cubic = nullptr) {
+                               ZerosAtRoot* zeros = nullptr) {
   constexpr double kMargin = 1 + 0x1p-30;  // covers the rounding of the bounds themselves
   // The estimate is taken at low, a double; past the doubles' grid only the
   // exact value at the root's fine interval is close enough.
@@ -487,15 +543,6 @@ std::optional<bool> touches_at(Kind kind, const Motion<Polynomial4>& motion, con
   const auto exact_numerators = [&]() -> LazyNumerators<Value>& {
     if (!exact) exact.emplace(kind, exact_motion.emplace(exactly_at(motion, root.low_time())));
     return *exact;
-  };
-  LazyNumerators<Polynomial4> polynomials(kind, motion);
-  const auto zero_at_root = [&](int k) {
-    if (!cubic) return false;
-    try {
-      return vanishes_at(*cubic, polynomials[k], root) == true;
-    } catch (const Value::TooLong&) {
-      return false;  // unknown: a finer grid may still settle the sign
-    }
   };
   std::array<std::optional<int>, 4> signs;
   for (int k = 0; k < estimates.count(); ++k) {
@@ -514,14 +561,14 @@ std::optional<bool> touches_at(Kind kind, const Motion<Polynomial4>& motion, con
   }
   int positive = 0;
   for (int k = 0; k < estimates.count(); ++k) {
-    if (!signs[k] && zero_at_root(k)) signs[k] = 0;
-    if (!signs[k]) return std::nullopt;
+    if (!signs[k] && zeros && zeros->vanishes(k, root)) signs[k] = 0;
+    if (!signs[k]) return std::nullopt;  // the next grid may settle it; then the others are tested
     positive += *signs[k] > 0;
   }
   if (positive > 0) return true;
   // Every numerator zero: a contact where n != 0.
   if (root.exact) return exact_numerators().squared().sign() > 0 ? std::optional(true) : std::nullopt;
-  if (cubic && vanishes_at(*cubic, polynomials.squared(), root) == false) return true;
+  if (zeros && zeros->nonzero(ZerosAtRoot::kSquared, root)) return true;
   return std::nullopt;
 }
 
@@ -674,11 +721,7 @@ class PlanarContact {
       narrow_to_grid(*defining, root, bits);
       if (const auto sign = settled()) return sign;
     }
-    try {
-      if (vanishes_at(*defining, q, root) == true) return 0;
-    } catch (const Value::TooLong&) {
-      // unknown: a finer grid may still settle the sign
-    }
+    if (vanishes_at(as_integers(*defining), q, root) == true) return 0;
     for (const int bits : kFinerGridBits) {
       narrow_finer(*defining, root, bits);
       if (const auto sign = settled()) return sign;
@@ -751,16 +794,19 @@ std::optional<ExactOutcome> solve(Kind kind, const Query& query, bool need_toi, 
     if (*after) break;  // and so is every later root
     // Signs too close to call on the isolating interval may settle on a
     // narrower one.
+    // From the doubles' grid on, numerators still unsettled are tested for
+    // a zero at the root.
     std::optional<bool> touches = touches_at(kind, motion, root);
+    ZerosAtRoot zeros(kind, motion, cubic);
     for (const int bits : {kGridBits, kDoubleGridBits}) {
       if (touches) break;
       narrow_to_grid(cubic, root, bits);
-      touches = touches_at(kind, motion, root, bits == kDoubleGridBits ? &cubic : nullptr);
+      touches = touches_at(kind, motion, root, bits == kDoubleGridBits ? &zeros : nullptr);
     }
     for (const int bits : kFinerGridBits) {
       if (touches) break;
       narrow_finer(cubic, root, bits);
-      touches = touches_at(kind, motion, root);
+      touches = touches_at(kind, motion, root, &zeros);
     }
     if (!touches) return std::nullopt;
     if (!*touches) continue;
