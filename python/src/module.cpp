@@ -337,16 +337,6 @@ Query one_query(py::handle object, const char* name) {
   return rows.in_2d ? lifted(rows.planar[0]) : rows.spatial[0];
 }
 
-Vec3 point(py::handle object, const char* name) {
-  py::array array = ensure_array(object, name);
-  if (array.dtype().kind() != 'f' && array.dtype().kind() != 'i' && array.dtype().kind() != 'u')
-    throw py::type_error(std::string(name) + ": expected 3 numbers, got dtype " + dtype_name(array));
-  if (array.ndim() != 1 || array.shape(0) != 3)
-    throw py::value_error(std::string(name) + ": expected 3 coordinates");
-  const py::array_t<double> values = copy_as<double>(array);
-  return {values.at(0), values.at(1), values.at(2)};
-}
-
 // The long names, as Python spells the keyword arguments, beside the
 // library's short ones ("vf").
 const char* long_name(Kind kind) {
@@ -540,10 +530,16 @@ template <std::size_t Points>
 QueryResult single_query(Kind kind, const std::array<py::object, Points>& points,
                          const std::array<const char*, Points>& names, const py::kwargs& keywords) {
   const Options options = parse_options(keywords);
-  std::array<Vec3, Points> p;
-  for (std::size_t i = 0; i < Points; ++i) p[i] = point(points[i], names[i]);
-  constexpr std::size_t half = Points / 2;
-  const Query query = make_query(kind, std::span<const Vec3>(p.data(), half), std::span<const Vec3>(p.data() + half, half));
+  // The library's reading of point arguments: its lengths (2D for the point
+  // kinds) and its messages, which name the call and the argument.
+  std::array<detail::PointArgument, Points> arguments;
+  for (std::size_t i = 0; i < Points; ++i) {
+    const py::array array = double_vector(points[i], names[i]);
+    arguments[i] = detail::read_point(names[i], Eigen::Map<const Eigen::VectorXd>(
+                                                    static_cast<const double*>(array.data()), array.size()));
+  }
+  const std::string call = std::string("batchccd.") + long_name(kind) + "_ccd";
+  const Query query = detail::query_from_points(call.c_str(), kind, arguments);
   py::gil_scoped_release release;
   return query_ccd(kind, query, options);
 }
@@ -1072,7 +1068,8 @@ some t in [0, tmax]. Zero-length and parallel edges are valid input.
       doc(R"(vertex_edge_ccd(p_t0, e0_t0, e1_t0, p_t1, e0_t1, e1_t1, **options) -> QueryResult
 
 Point p against segment (e0, e1): hit when the point comes within
-min_distance of the segment (end points included).
+min_distance of the segment (end points included). Points of 2 or 3
+coordinates, all of one length (2D is read as z = 0).
 )").c_str());
   m.def(
       "vertex_vertex_ccd",
@@ -1083,7 +1080,8 @@ min_distance of the segment (end points included).
       py::arg("p_t0"), py::arg("q_t0"), py::arg("p_t1"), py::arg("q_t1"),
       doc(R"(vertex_vertex_ccd(p_t0, q_t0, p_t1, q_t1, **options) -> QueryResult
 
-Point p against point q: hit when they come within min_distance.
+Point p against point q: hit when they come within min_distance. Points
+of 2 or 3 coordinates, all of one length (2D is read as z = 0).
 )").c_str());
   m.def(
       "query_ccd",

@@ -82,8 +82,12 @@ def test_wrong_shapes(scene):
         batchccd.mesh_ccd(x0, x1, faces, edge_edge=lists["edge_edge"][:, :3])
     with pytest.raises(ValueError, match=r"N x 8 x 3 or N x 24 \(2D: N x 8 x 2 or N x 16\), got 2 x 7 x 3"):
         batchccd.batch_ccd("vf", np.zeros((2, 7, 3)))
-    with pytest.raises(ValueError, match="p_t0: expected 3 coordinates"):
+    with pytest.raises(ValueError, match="batchccd.vertex_vertex_ccd: q_t0 must be of length 2 like p_t0, got 3"):
         batchccd.vertex_vertex_ccd([0, 0], [0, 0, 0], [0, 0, 0], [0, 0, 0])
+    with pytest.raises(ValueError, match="batchccd.vertex_face_ccd: p_t0 must be of length 3, got 2"):
+        batchccd.vertex_face_ccd(*[[0, 0]] * 8)
+    with pytest.raises(ValueError, match="batchccd.vertex_edge_ccd: p_t0 must be of length 2 or 3, got 4"):
+        batchccd.vertex_edge_ccd(*[[0, 0, 0, 0]] * 6)
     with pytest.raises(ValueError, match="min_distances"):
         batchccd.batch_ccd("vf", np.zeros((2, 8, 3)), np.zeros(3))
 

@@ -163,3 +163,21 @@ def test_2d_queries_are_the_queries_lifted_to_z_0():
         batchccd.batch_ccd("ve", np.zeros((5, 8, 4)))
     with pytest.raises(ValueError, match="2D and 3D points mixed"):
         batchccd.make_query("vv", np.zeros((2, 2)), np.zeros((2, 3)))
+
+
+def test_point_kind_calls_take_2d_points_as_the_plane_z_0():
+    rng = np.random.default_rng(8)
+    calls = {"ve": (batchccd.vertex_edge_ccd, 3), "vv": (batchccd.vertex_vertex_ccd, 2)}
+    for kind, (call, points) in calls.items():
+        hits = 0
+        for _ in range(100):
+            start = np.round(rng.uniform(-1, 1, (points, 2)) * 2**10) / 2**10
+            end = start + np.round(rng.uniform(-0.8, 0.8, (points, 2)) * 2**10) / 2**10
+            lifted = batchccd.make_query(kind, np.column_stack([start, np.zeros(points)]),
+                                         np.column_stack([end, np.zeros(points)]))
+            for options in ({}, {"min_distance": 0.1, "mode": "exact"}):
+                flat = call(*start, *end, **options)
+                spatial = batchccd.query_ccd(kind, lifted, **options)
+                assert (flat.hit, flat.toi, flat.status) == (spatial.hit, spatial.toi, spatial.status)
+                hits += flat.hit
+        assert 0 < hits < 200, kind
