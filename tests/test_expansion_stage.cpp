@@ -366,7 +366,9 @@ TEST(ExpansionStage, DecidesPlanarContactsAtTheEndsOfTheStepAndLeavesFlatTriangl
                                      {Vec3(3, 0, 0), face[0], face[1], Vec3(0.5, -1, 0)});
   EXPECT_FALSE(exact::solve_with_integers(Kind::vertex_face, flat_once, true, 1.0).hit);
   const std::optional<ExactOutcome> never = exact::solve_with_expansions(Kind::vertex_face, flat_once, true, 1.0);
-  if (never) EXPECT_FALSE(never->hit);
+  if (never) {
+    EXPECT_FALSE(never->hit);
+  }
 }
 
 TEST(ExpansionStage, LeavesToIntegersWhatWouldUnderflowItsZeroTest) {

@@ -328,7 +328,9 @@ TEST(PlanarWithin, AgreesWithExactLabelsAndTheGenericSearch) {
           if (truth.label != testing::Label::unlabelled) {
             ++labelled;
             ASSERT_EQ(exact.hit, truth.label == testing::Label::hit);
-            if (exact.hit) EXPECT_LE(exact.toi, truth.witness);
+            if (exact.hit) {
+              EXPECT_LE(exact.toi, truth.witness);
+            }
           }
           hits += exact.hit;
           // The planar search itself: certain, and a hit's bracket ends

@@ -53,10 +53,8 @@ template <class P0 = detail::BracedPoint, class P1 = detail::BracedPoint, class 
   requires SpatialPoints<P0, P1, P2, P3, P4, P5, P6, P7>
 QueryResult vertex_face_ccd(const P0& p_t0, const P1& a_t0, const P2& b_t0, const P3& c_t0, const P4& p_t1,
                             const P5& a_t1, const P6& b_t1, const P7& c_t1, const Options& options = {}) {
-  const detail::PointArgument points[] = {detail::read_point("p_t0", p_t0), detail::read_point("a_t0", a_t0),
-                                          detail::read_point("b_t0", b_t0), detail::read_point("c_t0", c_t0),
-                                          detail::read_point("p_t1", p_t1), detail::read_point("a_t1", a_t1),
-                                          detail::read_point("b_t1", b_t1), detail::read_point("c_t1", c_t1)};
+  const auto points = detail::read_points({"p_t0", "a_t0", "b_t0", "c_t0", "p_t1", "a_t1", "b_t1", "c_t1"}, p_t0,
+                                          a_t0, b_t0, c_t0, p_t1, a_t1, b_t1, c_t1);
   return query_ccd(Kind::vertex_face,
                    detail::query_from_points("batchccd::vertex_face_ccd", Kind::vertex_face, points), options);
 }
@@ -72,11 +70,9 @@ template <class P0 = detail::BracedPoint, class P1 = detail::BracedPoint, class 
 QueryResult edge_edge_ccd(const P0& ea0_t0, const P1& ea1_t0, const P2& eb0_t0, const P3& eb1_t0,
                           const P4& ea0_t1, const P5& ea1_t1, const P6& eb0_t1, const P7& eb1_t1,
                           const Options& options = {}) {
-  const detail::PointArgument points[] = {
-      detail::read_point("ea0_t0", ea0_t0), detail::read_point("ea1_t0", ea1_t0),
-      detail::read_point("eb0_t0", eb0_t0), detail::read_point("eb1_t0", eb1_t0),
-      detail::read_point("ea0_t1", ea0_t1), detail::read_point("ea1_t1", ea1_t1),
-      detail::read_point("eb0_t1", eb0_t1), detail::read_point("eb1_t1", eb1_t1)};
+  const auto points =
+      detail::read_points({"ea0_t0", "ea1_t0", "eb0_t0", "eb1_t0", "ea0_t1", "ea1_t1", "eb0_t1", "eb1_t1"}, ea0_t0,
+                          ea1_t0, eb0_t0, eb1_t0, ea0_t1, ea1_t1, eb0_t1, eb1_t1);
   return query_ccd(Kind::edge_edge, detail::query_from_points("batchccd::edge_edge_ccd", Kind::edge_edge, points),
                    options);
 }
@@ -90,9 +86,8 @@ template <class P0 = detail::BracedPoint, class P1 = detail::BracedPoint, class 
   requires PlanarOrSpatialPoints<P0, P1, P2, P3, P4, P5>
 QueryResult vertex_edge_ccd(const P0& p_t0, const P1& e0_t0, const P2& e1_t0, const P3& p_t1, const P4& e0_t1,
                             const P5& e1_t1, const Options& options = {}) {
-  const detail::PointArgument points[] = {detail::read_point("p_t0", p_t0),   detail::read_point("e0_t0", e0_t0),
-                                          detail::read_point("e1_t0", e1_t0), detail::read_point("p_t1", p_t1),
-                                          detail::read_point("e0_t1", e0_t1), detail::read_point("e1_t1", e1_t1)};
+  const auto points = detail::read_points({"p_t0", "e0_t0", "e1_t0", "p_t1", "e0_t1", "e1_t1"}, p_t0, e0_t0, e1_t0,
+                                          p_t1, e0_t1, e1_t1);
   return query_ccd(Kind::vertex_edge,
                    detail::query_from_points("batchccd::vertex_edge_ccd", Kind::vertex_edge, points), options);
 }
@@ -105,8 +100,7 @@ template <class P0 = detail::BracedPoint, class P1 = detail::BracedPoint, class 
   requires PlanarOrSpatialPoints<P0, P1, P2, P3>
 QueryResult vertex_vertex_ccd(const P0& p_t0, const P1& q_t0, const P2& p_t1, const P3& q_t1,
                               const Options& options = {}) {
-  const detail::PointArgument points[] = {detail::read_point("p_t0", p_t0), detail::read_point("q_t0", q_t0),
-                                          detail::read_point("p_t1", p_t1), detail::read_point("q_t1", q_t1)};
+  const auto points = detail::read_points({"p_t0", "q_t0", "p_t1", "q_t1"}, p_t0, q_t0, p_t1, q_t1);
   return query_ccd(Kind::vertex_vertex,
                    detail::query_from_points("batchccd::vertex_vertex_ccd", Kind::vertex_vertex, points), options);
 }

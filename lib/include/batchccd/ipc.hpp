@@ -91,7 +91,7 @@ using batchccd::SpatialPoints;
 namespace detail {
 
 using batchccd::detail::PointArgument;
-using batchccd::detail::read_point;
+using batchccd::detail::read_points;
 
 // The calls below, once their points are read: `points` holds the t0
 // points, then the t1 points, in the call's order (make_query's). Checks
@@ -108,8 +108,7 @@ bool point_point_ccd(const P0& p0_t0, const P1& p1_t0, const P2& p0_t1, const P3
                      double min_distance = 0.0, double tmax = 1.0, double tolerance = DEFAULT_CCD_TOLERANCE,
                      long max_iterations = DEFAULT_CCD_MAX_ITERATIONS,
                      double conservative_rescaling = DEFAULT_CCD_CONSERVATIVE_RESCALING) {
-  const detail::PointArgument points[] = {detail::read_point("p0_t0", p0_t0), detail::read_point("p1_t0", p1_t0),
-                                          detail::read_point("p0_t1", p0_t1), detail::read_point("p1_t1", p1_t1)};
+  const auto points = detail::read_points({"p0_t0", "p1_t0", "p0_t1", "p1_t1"}, p0_t0, p1_t0, p0_t1, p1_t1);
   return detail::ccd("batchccd::ipc::point_point_ccd", Kind::vertex_vertex, points, toi, min_distance, tmax,
                      tolerance, max_iterations, conservative_rescaling);
 }
@@ -120,9 +119,8 @@ bool point_edge_ccd(const P0& p_t0, const P1& e0_t0, const P2& e1_t0, const P3& 
                     const P5& e1_t1, double& toi, double min_distance = 0.0, double tmax = 1.0,
                     double tolerance = DEFAULT_CCD_TOLERANCE, long max_iterations = DEFAULT_CCD_MAX_ITERATIONS,
                     double conservative_rescaling = DEFAULT_CCD_CONSERVATIVE_RESCALING) {
-  const detail::PointArgument points[] = {detail::read_point("p_t0", p_t0),   detail::read_point("e0_t0", e0_t0),
-                                          detail::read_point("e1_t0", e1_t0), detail::read_point("p_t1", p_t1),
-                                          detail::read_point("e0_t1", e0_t1), detail::read_point("e1_t1", e1_t1)};
+  const auto points = detail::read_points({"p_t0", "e0_t0", "e1_t0", "p_t1", "e0_t1", "e1_t1"}, p_t0, e0_t0, e1_t0,
+                                          p_t1, e0_t1, e1_t1);
   return detail::ccd("batchccd::ipc::point_edge_ccd", Kind::vertex_edge, points, toi, min_distance, tmax, tolerance,
                      max_iterations, conservative_rescaling);
 }
@@ -134,11 +132,9 @@ bool edge_edge_ccd(const P0& ea0_t0, const P1& ea1_t0, const P2& eb0_t0, const P
                    double tmax = 1.0, double tolerance = DEFAULT_CCD_TOLERANCE,
                    long max_iterations = DEFAULT_CCD_MAX_ITERATIONS,
                    double conservative_rescaling = DEFAULT_CCD_CONSERVATIVE_RESCALING) {
-  const detail::PointArgument points[] = {
-      detail::read_point("ea0_t0", ea0_t0), detail::read_point("ea1_t0", ea1_t0),
-      detail::read_point("eb0_t0", eb0_t0), detail::read_point("eb1_t0", eb1_t0),
-      detail::read_point("ea0_t1", ea0_t1), detail::read_point("ea1_t1", ea1_t1),
-      detail::read_point("eb0_t1", eb0_t1), detail::read_point("eb1_t1", eb1_t1)};
+  const auto points =
+      detail::read_points({"ea0_t0", "ea1_t0", "eb0_t0", "eb1_t0", "ea0_t1", "ea1_t1", "eb0_t1", "eb1_t1"}, ea0_t0,
+                          ea1_t0, eb0_t0, eb1_t0, ea0_t1, ea1_t1, eb0_t1, eb1_t1);
   return detail::ccd("batchccd::ipc::edge_edge_ccd", Kind::edge_edge, points, toi, min_distance, tmax, tolerance,
                      max_iterations, conservative_rescaling);
 }
@@ -150,10 +146,8 @@ bool point_triangle_ccd(const P0& p_t0, const P1& t0_t0, const P2& t1_t0, const 
                         double tmax = 1.0, double tolerance = DEFAULT_CCD_TOLERANCE,
                         long max_iterations = DEFAULT_CCD_MAX_ITERATIONS,
                         double conservative_rescaling = DEFAULT_CCD_CONSERVATIVE_RESCALING) {
-  const detail::PointArgument points[] = {
-      detail::read_point("p_t0", p_t0),   detail::read_point("t0_t0", t0_t0), detail::read_point("t1_t0", t1_t0),
-      detail::read_point("t2_t0", t2_t0), detail::read_point("p_t1", p_t1),   detail::read_point("t0_t1", t0_t1),
-      detail::read_point("t1_t1", t1_t1), detail::read_point("t2_t1", t2_t1)};
+  const auto points = detail::read_points({"p_t0", "t0_t0", "t1_t0", "t2_t0", "p_t1", "t0_t1", "t1_t1", "t2_t1"},
+                                          p_t0, t0_t0, t1_t0, t2_t0, p_t1, t0_t1, t1_t1, t2_t1);
   return detail::ccd("batchccd::ipc::point_triangle_ccd", Kind::vertex_face, points, toi, min_distance, tmax,
                      tolerance, max_iterations, conservative_rescaling);
 }

@@ -7,7 +7,9 @@
 // does not fit does not compile (the concepts below constrain the calls, so
 // the refusal is also visible to std::is_invocable and requires-expressions);
 // a length known only at run time is checked then (query_from_points).
+#include <array>
 #include <concepts>
+#include <cstddef>
 #include <initializer_list>
 #include <span>
 
@@ -81,6 +83,15 @@ PointArgument read_point(const char* name, const Eigen::MatrixBase<P>& point) {
 
 inline PointArgument read_point(const char* name, const BracedPoint& point) {
   return {name, 3, Vec3(point.x, point.y, point.z)};
+}
+
+// Every point of a call read under its name, in the order given (a braced
+// list's elements are evaluated in order).
+template <class... Points>
+std::array<PointArgument, sizeof...(Points)> read_points(const std::array<const char*, sizeof...(Points)>& names,
+                                                         const Points&... points) {
+  std::size_t i = 0;
+  return {read_point(names[i++], points)...};
 }
 
 // The query of `kind` whose points are `points`: the t0 points, then the t1

@@ -39,7 +39,7 @@ namespace detail {
 bool decide(const char* call, Kind kind, const Query& query, double ms, double& toi, double tolerance,
             double t_max, long max_itr, double& output_tolerance);
 using batchccd::detail::BracedPoint;
-using batchccd::detail::read_point;
+using batchccd::detail::read_points;
 }  // namespace detail
 
 template <class P0 = detail::BracedPoint, class P1 = detail::BracedPoint, class P2 = detail::BracedPoint,
@@ -51,15 +51,11 @@ bool vertexFaceCCD(const P0& vertex_start, const P1& face_vertex0_start, const P
                    const P6& face_vertex1_end, const P7& face_vertex2_end, const Array3& /*err*/, double ms,
                    double& toi, double tolerance, double t_max, long max_itr, double& output_tolerance) {
   constexpr const char* call = "batchccd::ticcd::vertexFaceCCD";
-  const batchccd::detail::PointArgument points[] = {
-      detail::read_point("vertex_start", vertex_start),
-      detail::read_point("face_vertex0_start", face_vertex0_start),
-      detail::read_point("face_vertex1_start", face_vertex1_start),
-      detail::read_point("face_vertex2_start", face_vertex2_start),
-      detail::read_point("vertex_end", vertex_end),
-      detail::read_point("face_vertex0_end", face_vertex0_end),
-      detail::read_point("face_vertex1_end", face_vertex1_end),
-      detail::read_point("face_vertex2_end", face_vertex2_end)};
+  const auto points = detail::read_points(
+      {"vertex_start", "face_vertex0_start", "face_vertex1_start", "face_vertex2_start", "vertex_end",
+       "face_vertex0_end", "face_vertex1_end", "face_vertex2_end"},
+      vertex_start, face_vertex0_start, face_vertex1_start, face_vertex2_start, vertex_end, face_vertex0_end,
+      face_vertex1_end, face_vertex2_end);
   return detail::decide(call, Kind::vertex_face,
                         batchccd::detail::query_from_points(call, Kind::vertex_face, points), ms, toi, tolerance,
                         t_max, max_itr, output_tolerance);
@@ -74,15 +70,11 @@ bool edgeEdgeCCD(const P0& edge0_vertex0_start, const P1& edge0_vertex1_start, c
                  const P6& edge1_vertex0_end, const P7& edge1_vertex1_end, const Array3& /*err*/, double ms,
                  double& toi, double tolerance, double t_max, long max_itr, double& output_tolerance) {
   constexpr const char* call = "batchccd::ticcd::edgeEdgeCCD";
-  const batchccd::detail::PointArgument points[] = {
-      detail::read_point("edge0_vertex0_start", edge0_vertex0_start),
-      detail::read_point("edge0_vertex1_start", edge0_vertex1_start),
-      detail::read_point("edge1_vertex0_start", edge1_vertex0_start),
-      detail::read_point("edge1_vertex1_start", edge1_vertex1_start),
-      detail::read_point("edge0_vertex0_end", edge0_vertex0_end),
-      detail::read_point("edge0_vertex1_end", edge0_vertex1_end),
-      detail::read_point("edge1_vertex0_end", edge1_vertex0_end),
-      detail::read_point("edge1_vertex1_end", edge1_vertex1_end)};
+  const auto points = detail::read_points(
+      {"edge0_vertex0_start", "edge0_vertex1_start", "edge1_vertex0_start", "edge1_vertex1_start",
+       "edge0_vertex0_end", "edge0_vertex1_end", "edge1_vertex0_end", "edge1_vertex1_end"},
+      edge0_vertex0_start, edge0_vertex1_start, edge1_vertex0_start, edge1_vertex1_start, edge0_vertex0_end,
+      edge0_vertex1_end, edge1_vertex0_end, edge1_vertex1_end);
   return detail::decide(call, Kind::edge_edge, batchccd::detail::query_from_points(call, Kind::edge_edge, points),
                         ms, toi, tolerance, t_max, max_itr, output_tolerance);
 }
