@@ -83,10 +83,11 @@ std::vector<fs::path> sorted_files(const fs::path& root, const std::string& exte
 // ---- query CSV and query kernels --------------------------------------------
 
 // Kernel inputs start with a setup byte (kernel_input.hpp): the seeds take
-// turns over its 32 values, so that every configuration has seeds.
+// turns over its first 128 values (those without a time window), so that
+// every configuration has seeds.
 std::string next_setup_byte() {
   static unsigned next = 0;
-  return std::string(1, static_cast<char>(next++ % 32u));
+  return std::string(1, static_cast<char>(next++ % 128u));
 }
 
 // Every CSV under `root` that names a kind, or only those named queries_*.
@@ -136,6 +137,17 @@ void grid_kernel_seeds(const fs::path& out) {
     write_bytes(out / "query_kernels" / (name + "-both-contact-t1"),
                 setup + record(2 | 8, vertex_face) + record(3 | 8, edge_edge));
   }
+  // At each separation, and with time windows ending at the contact (tmax
+  // byte 127: 1/2) and before it (95: 3/8), in each mode.
+  for (unsigned mode = 0; mode < 4; ++mode)
+    for (unsigned separation = 0; separation < 4; ++separation)
+      for (const int window : {-1, 127, 95}) {
+        std::string setup(1, static_cast<char>(mode | separation << 5 | (window >= 0 ? 128u : 0u)));
+        if (window >= 0) setup += static_cast<char>(window);
+        const std::string name = "grid-mode-" + std::to_string(mode) + "-separation-" + std::to_string(separation) +
+                                 "-window-" + std::to_string(window);
+        write_bytes(out / "query_kernels" / name, setup + record(2, vertex_face) + record(3 | 8, edge_edge));
+      }
 }
 
 // ---- planar and point kinds: built in --------------------------------------
