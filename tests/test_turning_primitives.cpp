@@ -7,15 +7,19 @@
 // at sampled times: a sample within the separation must give a hit no
 // later than it; and to the exact labels of tests/exact_distance.hpp where
 // they settle a query.
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <random>
+#include <span>
 #include <vector>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "batchccd/batch.hpp"
 #include "batchccd/ccd.hpp"
+#include "batchccd/lab.hpp"
 #include "exact_distance.hpp"
 
 namespace batchccd {
@@ -127,6 +131,63 @@ TEST(TurningPrimitives, AgreeWithExactDistancesAtSampledTimes) {
   // Both kinds of answer are well represented.
   EXPECT_GT(sampled_hits, 200);
   EXPECT_GT(labelled_misses, 50);
+}
+
+// A triangle that turns a quarter turn about z while it widens and narrows:
+// a sliver standing in the plane y = 0 at t0 and in x = 0 at t1, wide and
+// flat (z = 0) at t = 1/2, where the vertex hovers `height` over its
+// interior. Its normal n(t), quadratic, is `sliver` long at both ends and
+// about 1/2 at t = 1/2: the middle Bernstein control point (about 1 long)
+// bounds it there, the end ones would not. Far from the sliver planes at the
+// ends, within the separation at t = 1/2: a sign test on the distance to the
+// plane that bounded |n| by its end control points alone would cull it.
+// The triangle's vertices in the order `order`; all dyadic.
+Query widening_sliver(double sliver, double height, const std::array<int, 3>& order) {
+  const Vec3 vertex(0.25, 0.625, height);
+  const std::array<Vec3, 3> start = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 0, -sliver)};
+  const std::array<Vec3, 3> end = {Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(0, 3, sliver)};
+  return make_query(Kind::vertex_face,
+                    std::vector<Vec3>{vertex, start[order[0]], start[order[1]], start[order[2]]},
+                    std::vector<Vec3>{vertex, end[order[0]], end[order[1]], end[order[2]]});
+}
+
+TEST(TurningPrimitives, NormalLargestBetweenItsEndsStillBoundsThePlaneDistance) {
+  const double separation = 0x1p-4;
+  const Rational separation2 = Rational(separation) * Rational(separation);
+  // The filters off: the solver's own plane test and plane step decide.
+  lab::Settings solver_alone;
+  solver_alone.sign_filter = solver_alone.separation_filter = solver_alone.swept_box_filter = false;
+  int cases = 0;
+  for (const double sliver : {0x1p-10, 0x1p-7})
+    for (const double height : {0x1p-5, 0x1p-8})
+      for (const std::array<int, 3>& order : {std::array{0, 1, 2}, std::array{1, 2, 0}, std::array{2, 1, 0}}) {
+        const Query q = widening_sliver(sliver, height, order);
+        SCOPED_TRACE(::testing::Message() << "sliver " << sliver << ", height " << height << ", order "
+                                          << order[0] << order[1] << order[2]);
+        // The geometry as described: apart by more than the separation at
+        // both ends, `height` apart at t = 1/2.
+        ASSERT_GT(testing::squared_distance_at(Kind::vertex_face, q, 0), separation2);
+        ASSERT_GT(testing::squared_distance_at(Kind::vertex_face, q, 1), separation2);
+        ASSERT_EQ(testing::squared_distance_at(Kind::vertex_face, q, Rational(1, 2)),
+                  Rational(height) * Rational(height));
+        for (const Mode mode : kCertified) {
+          SCOPED_TRACE(to_string(mode));
+          const QueryResult alone = query_ccd(Kind::vertex_face, q, with(mode, separation));
+          EXPECT_TRUE(alone.hit);
+          EXPECT_LE(alone.toi, 0.5);
+          const QueryResult solver = lab::query_ccd(Kind::vertex_face, q, with(mode, separation), solver_alone);
+          EXPECT_TRUE(solver.hit);
+          EXPECT_LE(solver.toi, 0.5);
+          for (const Isa isa : available_isas()) {
+            Options options = with(mode, separation);
+            options.isa = isa;
+            const BatchResult lanes = batch_ccd(Kind::vertex_face, std::span<const Query>(&q, 1), options);
+            EXPECT_TRUE(lanes.results.at(0).hit) << to_string(isa);
+          }
+          ++cases;
+        }
+      }
+  EXPECT_EQ(cases, 24);
 }
 
 }  // namespace
