@@ -242,21 +242,6 @@ Contact random_contact(Rng& rng, Kind kind, const PointMaker& point,
 // ---------------------------------------------------------------------------
 // Clear misses, certified exactly.
 
-// Largest extent of the query along any axis: at least its size under any
-// equivalent description.
-double diameter(const Query& q) {
-  double largest = 0;
-  for (int axis = 0; axis < 3; ++axis) {
-    double low = kInfinity, high = -kInfinity;
-    for (const Vec3& x : q.points) {
-      low = std::min(low, x[axis]);
-      high = std::max(high, x[axis]);
-    }
-    largest = std::max(largest, high - low);
-  }
-  return largest;
-}
-
 // Whether the primitives stay more than `gap` apart over [0, 1], proven by
 // the exact labels of exact_distance.hpp (rational distances, a certified
 // Lipschitz bound). Those spend their GMP samples only on queries the
@@ -283,7 +268,7 @@ std::vector<int> moving_points(Kind kind) {
   return kind == Kind::vertex_face ? std::vector<int>{0, 4} : std::vector<int>{2, 3, 6, 7};
 }
 
-// A query whose primitives stay more than 1e-3 of its diameter apart: a
+// A query whose primitives stay more than 1e-3 of its size apart: a
 // contact with the vertex (VF) or edge b (EE) shifted off it, when that
 // clears it; otherwise another try.
 Query random_clear_miss(Rng& rng, Kind kind, const PointMaker& point) {
@@ -294,7 +279,7 @@ Query random_clear_miss(Rng& rng, Kind kind, const PointMaker& point) {
                point.planar ? 0.0 : uniform_int(rng, -4, 4) * scale);
     if (point.kind == PointKind::real) shift *= 0.25;
     for (int index : moving_points(kind)) q.points[index] += shift;
-    if (certainly_apart(kind, q, 1e-3 * diameter(q))) return q;
+    if (certainly_apart(kind, q, 1e-3 * batchccd_testing::query_size(q))) return q;
   }
 }
 
@@ -388,7 +373,7 @@ Query random_scaling_query(Rng& rng, Kind kind, int family) {
     case 1: {
       Query q = random_contact(rng, kind, point, kFewSegments).query;
       const Vec3 direction(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
-      const Vec3 shift = direction * std::pow(10.0, -uniform(rng, 1, 12)) * diameter(q);
+      const Vec3 shift = direction * std::pow(10.0, -uniform(rng, 1, 12)) * batchccd_testing::query_size(q);
       for (int index : moving_points(kind)) q.points[index] += shift;
       return q;
     }
