@@ -5,19 +5,24 @@
 // - well formed, every mode and baseline (lab.hpp): a non-finite coordinate gives invalid_input with
 //   hit = true and toi = 0; otherwise status ok, a hit's toi in [0, 1], a
 //   miss's toi = +inf, never NaN;
-// - the modes (conservative, exact) find every forced contact, at a toi no
-//   later than it;
+// - the modes (conservative, exact) find every forced contact within the
+//   time window, at a toi no later than it;
 // - exact says yes => conservative says yes (a conservative "no" there is a
 //   false negative), and the conservative toi is no later than the exact one;
+// - at a separation or a time window tmax < 1, finite queries: the checks of
+//   pair_search_check.hpp (both certified modes against each other and
+//   against exact truth: the exact stage at d = 0, tests/exact_distance.hpp's
+//   rational labels at d > 0), in place of the line above;
 // - power-of-two scaling (when exact) changes nothing: decision and toi bit
 //   for bit in the scaled frame (conservative, the fast baseline), the
-//   decision in exact mode;
+//   decision in exact mode; a separation is scaled with the query;
 // - batch_ccd and mesh_ccd, in every instruction set this machine runs,
 //   give each query the decision query_ccd (the scalar reference) gives it
-//   alone, with consistent counters.
-// Scaling and the batch entry points run in one configuration per input,
-// picked by its setup byte (kernel_input.hpp).
+//   alone, with consistent counters (with one separation per candidate).
+// Scaling, the batch entry points, the separation and the time window come
+// in one configuration per input, picked by its setup byte (kernel_input.hpp).
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -31,6 +36,7 @@
 #include "batchccd/lab.hpp"
 #include "fuzz_check.hpp"
 #include "kernel_input.hpp"
+#include "pair_search_check.hpp"
 
 namespace {
 
@@ -57,15 +63,38 @@ QueryResult run(Kind kind, const Query& query, const lab::Method& method, const 
 }
 
 
+// What one call asks besides its queries.
+struct Window {
+  bool need_toi = true;
+  double tmax = 1;
+};
+
 // A fuzz input must not take seconds: a smaller search budget keeps the
 // runs fast, and an exhausted budget is still answered soundly (the fast
-// baseline: a hit; the modes: the exact stage).
-Options options_for(bool need_toi) {
+// baseline: a hit; the modes: the exact stage, or at a separation an
+// undecided hit).
+Options options_for(const Window& window, double separation) {
   Options options;
-  options.need_toi = need_toi;
+  options.need_toi = window.need_toi;
+  options.tmax = window.tmax;
+  options.min_distance = separation;
   options.max_iterations = 1 << 8;
   options.threads = 1;
   return options;
+}
+
+// The setup's separation for one query: a fraction of its size (its largest
+// coordinate difference, rounded down to a power of two; 1 where that is 0
+// or not finite), so that it matters at every scale; never 0 but at index 0.
+constexpr double kSeparationFractions[] = {0, 0x1p-20, 0x1p-6, 0x1p-1};
+double separation_for(const Query& query, unsigned index) {
+  if (index == 0) return 0;
+  double size = 0;
+  for (const batchccd::Vec3& point : query.points)
+    size = std::max(size, (point - query.points[0]).cwiseAbs().maxCoeff());
+  const int exponent = std::isfinite(size) && size > 0 ? std::ilogb(size) : 0;
+  return std::max(std::ldexp(kSeparationFractions[index % std::size(kSeparationFractions)], exponent),
+                  std::numeric_limits<double>::denorm_min());
 }
 
 bool all_finite(const Query& query) {
@@ -89,37 +118,52 @@ void check_well_formed(const QueryResult& r, bool finite) {
   }
 }
 
-double forced_contact_time(ForcedContact contact) { return contact == ForcedContact::at_t1 ? 1.0 : 0.0; }
-
-void check_forced_contact(const KernelRecord& record, const QueryResult& r) {
+void check_forced_contact(const KernelRecord& record, const Window& window, const QueryResult& r) {
   if (record.contact == ForcedContact::none || r.status != Status::ok) return;
+  const double time = record.contact == ForcedContact::at_t1 ? 1.0 : 0.0;
+  if (time > window.tmax) return;
   require(r.hit, "a mode finds a forced contact", batchccd::to_string(record.kind));
-  if (record.need_toi) require(r.toi <= forced_contact_time(record.contact), "toi no later than a forced contact");
+  if (record.need_toi) require(r.toi <= time, "toi no later than a forced contact");
 }
 
 // Conservative and fast work in a frame scaled by powers of two: the same
 // decision and toi bit for bit. Exact arithmetic: the same decision.
-void check_scaling(const KernelRecord& record, const lab::Method& method, const QueryResult& original) {
+void check_scaling(const KernelRecord& record, const Window& window, double separation, const lab::Method& method,
+                   const QueryResult& original) {
   const std::optional<Query> scaled = batchccd::fuzz::exactly_scaled(record.query, record.scale_exponent);
-  if (!scaled) return;
-  const QueryResult r = run(record.kind, *scaled, method, options_for(record.need_toi));
+  const double scaled_separation = std::ldexp(separation, record.scale_exponent);
+  if (!scaled || !std::isfinite(scaled_separation) ||
+      std::ldexp(scaled_separation, -record.scale_exponent) != separation)
+    return;
+  const QueryResult r = run(record.kind, *scaled, method, options_for(window, scaled_separation));
   require(r.status == original.status && r.hit == original.hit, "scaling by 2^k keeps the decision",
           lab::to_string(method));
   if (method != lab::kExact)
     require(r.toi == original.toi, "scaling by 2^k keeps the toi bit for bit", lab::to_string(method));
 }
 
-// Every method on one query alone, scaled by the setup's method; returns
-// the answers in kMethods order.
-std::vector<QueryResult> check_alone(const KernelRecord& record, const lab::Method& setup_method) {
+// Every method on one query alone (the cubic baseline only without a
+// separation), scaled by the setup's method; returns the setup's answer.
+QueryResult check_alone(const KernelRecord& record, const Window& window, double separation,
+                        const lab::Method& setup_method) {
   const bool finite = all_finite(record.query);
   std::vector<QueryResult> answers;
+  QueryResult setup_answer;
   for (const lab::Method& method : kMethods) {
-    const QueryResult r = run(record.kind, record.query, method, options_for(record.need_toi));
+    if (method == lab::kCubic && separation > 0) continue;
+    const QueryResult r = run(record.kind, record.query, method, options_for(window, separation));
     check_well_formed(r, finite);
-    if (is_certified(method)) check_forced_contact(record, r);
-    if (method == setup_method && method != lab::kCubic) check_scaling(record, method, r);
+    if (is_certified(method)) check_forced_contact(record, window, r);
+    if (method == setup_method && method != lab::kCubic) check_scaling(record, window, separation, method, r);
+    if (method == setup_method) setup_answer = r;
     answers.push_back(r);
+  }
+  if (finite && (separation > 0 || window.tmax < 1)) {
+    // A decision counted undecided (exact mode at a separation) may stand
+    // against a conservative miss: compared as pair_search_check.hpp does.
+    const double windows[] = {window.tmax};
+    batchccd::fuzz::check_at_separation(record.kind, record.query, separation, windows);
+    return setup_answer;
   }
   const QueryResult& conservative = answers.front();
   const QueryResult& exact = answers.back();
@@ -127,7 +171,7 @@ std::vector<QueryResult> check_alone(const KernelRecord& record, const lab::Meth
     require(conservative.hit, "conservative says no where exact says yes (a false negative)");
     if (record.need_toi) require(conservative.toi <= exact.toi + 0x1p-40, "conservative toi no later than exact");
   }
-  return answers;
+  return setup_answer;
 }
 
 void check_counters(const BatchResult& batch, const std::vector<QueryResult>& alone) {
@@ -158,7 +202,7 @@ struct RecordMesh {
   batchccd::Candidates candidates;
 };
 
-RecordMesh as_mesh(Kind kind, const std::vector<Query>& queries) {
+RecordMesh as_mesh(Kind kind, std::span<const Query> queries) {
   RecordMesh mesh;
   const auto n = static_cast<Eigen::Index>(queries.size());
   mesh.t0.resize(4 * n, 3);
@@ -181,23 +225,30 @@ RecordMesh as_mesh(Kind kind, const std::vector<Query>& queries) {
 }
 
 // All queries of one kind (and need_toi) in one call of the setup's entry
-// point, method and instruction set, against their answers alone.
-void check_batch(Kind kind, const std::vector<const KernelRecord*>& records, const std::vector<QueryResult>& alone,
-                 bool need_toi, const lab::Method& method, Isa isa, bool through_mesh) {
-  if (records.empty()) return;
-  std::vector<Query> queries;
-  for (const KernelRecord* record : records) queries.push_back(record->query);
-  Options options = method.applied_to(options_for(need_toi));
+// point, method and instruction set, each at its separation, against their
+// answers alone. Without a separation no list of them is passed: a list of
+// zeros turns on the lane filters' forms for a separation, and the fast
+// baseline (uncertified) may then answer a query otherwise than with
+// Options::min_distance = 0 (a fuzz input did: a miss alone, a hit at 0 in
+// the batch, in every instruction set).
+void check_batch(Kind kind, std::span<const Query> queries, std::span<const double> separations,
+                 const std::vector<QueryResult>& alone, const Window& window, const lab::Method& method, Isa isa,
+                 bool through_mesh) {
+  if (queries.empty()) return;
+  Options options = method.applied_to(options_for(window, 0));
   options.isa = isa;
+  BatchResult batch;
   if (through_mesh) {
     const RecordMesh mesh = as_mesh(kind, queries);
-    check_same_decisions(
-        lab::mesh_ccd({mesh.t0, mesh.t1, mesh.faces}, mesh.candidates, options, method.settings()), alone,
-        batchccd::to_string(isa));
+    batchccd::MinDistances per_candidate;
+    if (separations.front() > 0)
+      (kind == Kind::vertex_face ? per_candidate.vertex_face : per_candidate.edge_edge) = separations;
+    lab::mesh_ccd({mesh.t0, mesh.t1, mesh.faces}, mesh.candidates, per_candidate, options, method.settings(), batch);
   } else {
-    check_same_decisions(lab::batch_ccd(kind, queries, options, method.settings()), alone,
-                         batchccd::to_string(isa));
+    lab::batch_ccd(kind, queries, separations.front() > 0 ? separations : std::span<const double>(), options,
+                   method.settings(), batch);
   }
+  check_same_decisions(batch, alone, batchccd::to_string(isa));
 }
 
 }  // namespace
@@ -205,19 +256,23 @@ void check_batch(Kind kind, const std::vector<const KernelRecord*>& records, con
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const batchccd::fuzz::KernelInput input = batchccd::fuzz::decode_input(std::span(data, size));
   static const std::vector<Isa> isas = batchccd::available_isas();
-  const std::size_t method_index = input.setup.mode_index % std::size(kMethods);
+  const lab::Method& method = kMethods[input.setup.mode_index % std::size(kMethods)];
   const Isa isa = isas[input.setup.isa_index % isas.size()];
+  const unsigned separation_index = method == lab::kCubic ? 0 : input.setup.separation_index;
   // A batch call shares one need_toi: group by kind and need_toi.
   for (const Kind kind : {Kind::vertex_face, Kind::edge_edge})
     for (const bool need_toi : {true, false}) {
-      std::vector<const KernelRecord*> group;
+      const Window window{need_toi, input.setup.tmax};
+      std::vector<Query> queries;
+      std::vector<double> separations;
       std::vector<QueryResult> alone;  // by the setup's method
       for (const KernelRecord& record : input.records) {
         if (record.kind != kind || record.need_toi != need_toi) continue;
-        group.push_back(&record);
-        alone.push_back(check_alone(record, kMethods[method_index])[method_index]);
+        queries.push_back(record.query);
+        separations.push_back(separation_for(record.query, separation_index));
+        alone.push_back(check_alone(record, window, separations.back(), method));
       }
-      check_batch(kind, group, alone, need_toi, kMethods[method_index], isa, input.setup.mesh);
+      check_batch(kind, queries, separations, alone, window, method, isa, input.setup.mesh);
     }
   return 0;
 }

@@ -10,6 +10,11 @@
 //   bits 0-1 mode or baseline (index into the checked ones, modulo their count)
 //   bits 2-3 instruction set (index into those available, modulo)
 //   bit 4    entry point: 0 batch_ccd, 1 mesh_ccd
+//   bits 5-6 separation: 0 none; 1-3 each query at 2^-20, 2^-6 or 2^-1
+//            of its size (fuzz_query_kernels.cpp; none with the cubic
+//            baseline, which refuses one)
+//   bit 7    a time window: the next byte b gives tmax = (b + 1) / 256
+//            (else tmax = 1)
 //
 // A record:
 //   byte 0  control: bit 0 kind (0 vertex-face, 1 edge-edge)
@@ -54,6 +59,8 @@ struct KernelSetup {
   unsigned mode_index = 0;
   unsigned isa_index = 0;
   bool mesh = false;
+  unsigned separation_index = 0;
+  double tmax = 1;
 };
 
 struct KernelRecord {
@@ -99,8 +106,13 @@ inline std::vector<KernelRecord> decode_records(std::span<const std::uint8_t> by
 inline KernelInput decode_input(std::span<const std::uint8_t> bytes) {
   KernelInput input;
   if (bytes.empty()) return input;
-  input.setup = {bytes[0] & 3u, (bytes[0] >> 2) & 3u, (bytes[0] & 16u) != 0};
-  input.records = decode_records(bytes.subspan(1));
+  input.setup = {bytes[0] & 3u, (bytes[0] >> 2) & 3u, (bytes[0] & 16u) != 0, (bytes[0] >> 5) & 3u};
+  std::size_t header = 1;
+  if ((bytes[0] & 128u) != 0 && bytes.size() > 1) {
+    input.setup.tmax = (bytes[1] + 1) / 256.0;
+    header = 2;
+  }
+  input.records = decode_records(bytes.subspan(header));
   return input;
 }
 

@@ -4,7 +4,7 @@
 //
 //   make_seed_corpora SHARED_DATA_DIR OUTPUT_DIR
 //
-// writes OUTPUT_DIR/{query_csv,truth,pairs,ply,query_kernels}/, and the
+// writes OUTPUT_DIR/{query_csv,truth,pairs,ply,scene,query_kernels}/, and the
 // built-in seeds of the targets whose inputs need no data
 // (OUTPUT_DIR/{query_kernels,planar,point_kinds}/).
 
@@ -83,10 +83,11 @@ std::vector<fs::path> sorted_files(const fs::path& root, const std::string& exte
 // ---- query CSV and query kernels --------------------------------------------
 
 // Kernel inputs start with a setup byte (kernel_input.hpp): the seeds take
-// turns over its 32 values, so that every configuration has seeds.
+// turns over its first 128 values (those without a time window), so that
+// every configuration has seeds.
 std::string next_setup_byte() {
   static unsigned next = 0;
-  return std::string(1, static_cast<char>(next++ % 32u));
+  return std::string(1, static_cast<char>(next++ % 128u));
 }
 
 // Every CSV under `root` that names a kind, or only those named queries_*.
@@ -136,6 +137,17 @@ void grid_kernel_seeds(const fs::path& out) {
     write_bytes(out / "query_kernels" / (name + "-both-contact-t1"),
                 setup + record(2 | 8, vertex_face) + record(3 | 8, edge_edge));
   }
+  // At each separation, and with time windows ending at the contact (tmax
+  // byte 127: 1/2) and before it (95: 3/8), in each mode.
+  for (unsigned mode = 0; mode < 4; ++mode)
+    for (unsigned separation = 0; separation < 4; ++separation)
+      for (const int window : {-1, 127, 95}) {
+        std::string setup(1, static_cast<char>(mode | separation << 5 | (window >= 0 ? 128u : 0u)));
+        if (window >= 0) setup += static_cast<char>(window);
+        const std::string name = "grid-mode-" + std::to_string(mode) + "-separation-" + std::to_string(separation) +
+                                 "-window-" + std::to_string(window);
+        write_bytes(out / "query_kernels" / name, setup + record(2, vertex_face) + record(3 | 8, edge_edge));
+      }
 }
 
 // ---- planar and point kinds: built in --------------------------------------
@@ -314,6 +326,69 @@ void ply_seeds(const fs::path& scenes, const fs::path& out) {
   }
 }
 
+// ---- scene directories ----------------------------------------------------------
+
+// fuzz_scene.cpp's inputs: a presence byte, then t0.ply, t1.ply, vf.csv,
+// ee.csv, ve.csv, vv.csv and the four truth files, each ended by the
+// separator. A scene's first faces at t0 and t1 (small_piece's vertices,
+// both times), with lists over them: each vertex against each face it is
+// not on, the faces' edges pairwise, each vertex against each edge and each
+// other vertex; truths of their lengths, 1 every third.
+std::string scene_seed(const batchccd::PlyMesh& start, const batchccd::PlyMesh& end, PlyStyle style) {
+  const Eigen::Index n = start.vertices.rows();
+  std::vector<std::array<int, 2>> edges;
+  for (Eigen::Index f = 0; f < start.faces.rows(); ++f)
+    for (Eigen::Index k = 0; k < 3; ++k) edges.push_back({start.faces(f, k), start.faces(f, (k + 1) % 3)});
+  std::string vf, ee, ve, vv;
+  std::array<std::size_t, 4> lengths{};
+  for (int v = 0; v < n; ++v)
+    for (Eigen::Index f = 0; f < start.faces.rows(); ++f)
+      if ((start.faces.row(f).array() != v).all()) {
+        vf += std::to_string(v) + "," + std::to_string(f) + "\n";
+        ++lengths[0];
+      }
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    for (std::size_t j = i + 1; j < edges.size(); ++j) {
+      ee += std::to_string(edges[i][0]) + "," + std::to_string(edges[i][1]) + "," + std::to_string(edges[j][0]) +
+            "," + std::to_string(edges[j][1]) + "\n";
+      ++lengths[1];
+    }
+  for (int v = 0; v < n; ++v) {
+    for (const auto& edge : edges) {
+      ve += std::to_string(v) + ", " + std::to_string(edge[0]) + ", " + std::to_string(edge[1]) + "\n";
+      ++lengths[2];
+    }
+    for (int w = v + 1; w < n; ++w) {
+      vv += std::to_string(v) + "," + std::to_string(w) + "\n";
+      ++lengths[3];
+    }
+  }
+  constexpr std::string_view separator = "--next file--\n";
+  std::string bytes(1, static_cast<char>(0xff));  // every file there
+  for (const std::string& file : {ply_text(start, style), ply_text(end, style), vf, ee, ve, vv})
+    bytes.append(file).append(separator);
+  for (std::size_t k = 0; k < lengths.size(); ++k) {
+    std::string truth;
+    for (std::size_t i = 0; i < lengths[k]; ++i) truth += i % 3 == 0 ? "1\n" : "0\n";
+    bytes.append(truth).append(separator);
+  }
+  return bytes;
+}
+
+void scene_seeds(const fs::path& scenes, const fs::path& out) {
+  for (const fs::path& file : sorted_files(scenes, ".ply")) {
+    if (file.filename() != "t0.ply" || !fs::is_regular_file(file.parent_path() / "t1.ply")) continue;
+    const batchccd::PlyMesh start = small_piece(batchccd::read_ply(file));
+    // The same vertices at t1: small_piece of t1's positions under t0's faces.
+    batchccd::PlyMesh whole_end = batchccd::read_ply(file.parent_path() / "t1.ply");
+    whole_end.faces = batchccd::read_ply(file).faces;
+    const batchccd::PlyMesh end = small_piece(whole_end);
+    const std::string name = file.parent_path().filename().string();
+    write_bytes(out / "scene" / (name + "-ascii"), scene_seed(start, end, PlyStyle::ascii));
+    write_bytes(out / "scene" / (name + "-little-double"), scene_seed(start, end, PlyStyle::little_double));
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -335,6 +410,7 @@ int main(int argc, char** argv) {
     query_seeds(data / "scenes", true, out);
     list_seeds(data / "scenes", out);
     ply_seeds(data / "scenes", out);
+    scene_seeds(data / "scenes", out);
   } catch (const std::exception& error) {
     std::cerr << "make_seed_corpora: " << error.what() << "\n";
     return 1;

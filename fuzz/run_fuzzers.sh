@@ -3,7 +3,7 @@
 #
 #   fuzz/run_fuzzers.sh BUILD_DIR SECONDS [TARGET...]
 #
-# TARGET is query_csv, truth, pairs, ply, query_kernels, planar,
+# TARGET is query_csv, truth, pairs, ply, scene, query_kernels, planar,
 # point_kinds or expansion_stage (default: all).
 # Each target starts from the corpus it grew before (BUILD_DIR/corpus/T),
 # the seeds cut from ../shared/data (BUILD_DIR/seeds/T) and the hand-written
@@ -17,7 +17,7 @@ build_dir=${1:?usage: fuzz/run_fuzzers.sh BUILD_DIR SECONDS [TARGET...]}
 seconds=${2:?usage: fuzz/run_fuzzers.sh BUILD_DIR SECONDS [TARGET...]}
 shift 2
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(query_csv truth pairs ply query_kernels planar point_kinds expansion_stage)
+[ ${#targets[@]} -eq 0 ] && targets=(query_csv truth pairs ply scene query_kernels planar point_kinds expansion_stage)
 
 # A small quarantine keeps the kernel target's memory flat over long runs.
 export ASAN_OPTIONS=${ASAN_OPTIONS:-quarantine_size_mb=64:detect_leaks=1}

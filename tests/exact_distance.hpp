@@ -46,23 +46,41 @@ struct Labelled {
   double size = 0;         // >= the query's size as Options::tolerance measures it
 };
 
+// sqrt(x2) in double, to within a few ulps where it is a double: where x2
+// falls below the normal doubles (as a double subnormal, with few bits, or
+// 0, while its root is still a normal double or a subnormal one) from x2
+// scaled by 2^1200 (fuzz_query_kernels found the nudging below running for
+// ever from such estimates).
+inline double root_estimate(const Rational& x2) {
+  const double x = x2.get_d();
+  if (x >= std::numeric_limits<double>::min()) return std::sqrt(x);
+  Rational scaled;
+  mpq_mul_2exp(scaled.get_mpq_t(), x2.get_mpq_t(), 1200);
+  return std::ldexp(std::sqrt(scaled.get_d()), -600);
+}
+
 // Certified bounds of sqrt(x2) (x2 exact): the double is nudged until the
-// exact square agrees. Beyond the doubles' range (x2 above about 2^1024,
-// lengths of queries scaled by 2^500): sqrt(DBL_MAX) below, +inf above
-// (a Rational of an infinite double would trap inside GMP).
+// exact square agrees, each step at least one ulp (a subnormal times
+// 1 +- 2^-40 rounds back to itself). Beyond the doubles' range (x2 above
+// about 2^1024, lengths of queries scaled by 2^500): sqrt(DBL_MAX) below,
+// +inf above (a Rational of an infinite double would trap inside GMP).
 inline double sqrt_below(const Rational& x2) {
   if (sgn(x2) <= 0) return 0;
-  double r = std::sqrt(x2.get_d()) * (1 - 0x1p-40);
+  double r = root_estimate(x2) * (1 - 0x1p-40);
   if (!std::isfinite(r)) r = std::sqrt(std::numeric_limits<double>::max()) * (1 - 0x1p-40);
-  while (Rational(r) * Rational(r) > x2) r *= 1 - 0x1p-40;
+  while (Rational(r) * Rational(r) > x2) {
+    const double shrunk = r * (1 - 0x1p-40);
+    r = shrunk < r ? shrunk : std::nextafter(r, 0.0);
+  }
   return r;
 }
 inline double sqrt_above(const Rational& x2) {
   if (sgn(x2) <= 0) return 0;
-  double r = std::max(std::sqrt(x2.get_d()) * (1 + 0x1p-40), std::numeric_limits<double>::denorm_min());
+  double r = std::max(root_estimate(x2) * (1 + 0x1p-40), std::numeric_limits<double>::denorm_min());
   if (!std::isfinite(r)) return std::numeric_limits<double>::infinity();
   while (Rational(r) * Rational(r) < x2) {
-    r *= 1 + 0x1p-40;
+    const double grown = r * (1 + 0x1p-40);
+    r = grown > r ? grown : std::nextafter(r, std::numeric_limits<double>::infinity());
     if (!std::isfinite(r)) return r;
   }
   return r;

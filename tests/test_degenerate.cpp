@@ -20,6 +20,7 @@
 #include "batchccd/ccd.hpp"
 #include "batchccd/lab.hpp"
 #include "exact_distance.hpp"
+#include "query_builders.hpp"
 
 namespace {
 
@@ -30,6 +31,8 @@ using batchccd::Query;
 using batchccd::QueryResult;
 using batchccd::Status;
 using batchccd::Vec3;
+using batchccd::testing::at_rest;
+using batchccd::testing::from_points;
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // How much earlier than the true first contact a conservative TOI may be.
@@ -54,16 +57,6 @@ QueryResult run(Kind kind, const Query& q, const Options& options) {
 // A mode or a baseline (lab.hpp), through the generic entry point.
 QueryResult run(Kind kind, const Query& q, const batchccd::lab::Method& method) {
   return batchccd::lab::query_ccd(kind, q, method.applied_to({}), method.settings());
-}
-
-// Points at t0 and t1, in the order of Query (VF: p, a, b, c; EE: ea0, ea1, eb0, eb1).
-Query make(const Vec3& x0, const Vec3& y0, const Vec3& z0, const Vec3& w0, const Vec3& x1,
-           const Vec3& y1, const Vec3& z1, const Vec3& w1) {
-  return Query{{x0, y0, z0, w0, x1, y1, z1, w1}};
-}
-// Points that do not move.
-Query make_static(const Vec3& x, const Vec3& y, const Vec3& z, const Vec3& w) {
-  return make(x, y, z, w, x, y, z, w);
 }
 
 // The result of a mode that promises nothing about correctness must still be
@@ -157,42 +150,42 @@ const Vec3 A = V(0, 0, 0), B = V(4, 0, 0), C = V(0, 4, 0);
 
 TEST(DegenerateVertexFace, CoplanarVertexSlidesIntoTriangle) {
   // p(t) = (-2 + 4t, 1, 0) reaches the edge x = 0 (edge ca) at t = 1/2.
-  check_vf(make(V(-2, 1, 0), A, B, C, V(2, 1, 0), A, B, C), 0.5);
+  check_vf(from_points(V(-2, 1, 0), A, B, C, V(2, 1, 0), A, B, C), 0.5);
 }
 
 TEST(DegenerateVertexFace, CoplanarVertexSlidesPastTriangle) {
   // p(t) = (-2 + 8t, 5, 0): the line y = 5 stays 1 above the apex c = (0, 4).
-  check_vf(make(V(-2, 5, 0), A, B, C, V(6, 5, 0), A, B, C), kMiss);
+  check_vf(from_points(V(-2, 5, 0), A, B, C, V(6, 5, 0), A, B, C), kMiss);
 }
 
 TEST(DegenerateVertexFace, CoplanarVertexSlidesAlongOutsideOfHypotenuse) {
   // p(t) = (5 - 4t, 4t, 0): x + y = 5 throughout, parallel to edge bc at
   // distance 1/sqrt(2).
-  check_vf(make(V(5, 0, 0), A, B, C, V(1, 4, 0), A, B, C), kMiss);
+  check_vf(from_points(V(5, 0, 0), A, B, C, V(1, 4, 0), A, B, C), kMiss);
 }
 
 TEST(DegenerateVertexFace, CoplanarTriangleSlidesOntoStaticVertex) {
   // The triangle translates by (4, 0, 0); the vertex (5, 1, 0) is reached by
   // the hypotenuse x + y = 4 + 4t when 6 = 4 + 4t, t = 1/2.
-  check_vf(make(V(5, 1, 0), A, B, C, V(5, 1, 0), V(4, 0, 0), V(8, 0, 0), V(4, 4, 0)), 0.5);
+  check_vf(from_points(V(5, 1, 0), A, B, C, V(5, 1, 0), V(4, 0, 0), V(8, 0, 0), V(4, 4, 0)), 0.5);
 }
 
 TEST(DegenerateEdgeEdge, CoplanarEdgesSlideIntoCrossing) {
   // Edge b = (1, -2)-(3, -1) moves by (0, 4) in z = 0; its endpoint (3, -1 + 4t)
   // reaches edge a (the segment [0, 4] of the x axis) at t = 1/4.
-  check_ee(make(A, B, V(1, -2, 0), V(3, -1, 0), A, B, V(1, 2, 0), V(3, 3, 0)), 0.25);
+  check_ee(from_points(A, B, V(1, -2, 0), V(3, -1, 0), A, B, V(1, 2, 0), V(3, 3, 0)), 0.25);
 }
 
 TEST(DegenerateEdgeEdge, CoplanarEdgesSlidePastEachOther) {
   // The same motion 4 units further along x: edge b stays at x >= 5, 1 away
   // from edge a's end (4, 0, 0).
-  check_ee(make(A, B, V(5, -2, 0), V(6, -1, 0), A, B, V(5, 2, 0), V(6, 3, 0)), kMiss);
+  check_ee(from_points(A, B, V(5, -2, 0), V(6, -1, 0), A, B, V(5, 2, 0), V(6, 3, 0)), kMiss);
 }
 
 TEST(DegenerateEdgeEdge, CollinearEdgesSlideIntoOverlap) {
   // Edge a = [0, 1] on the x axis, edge b = [2 - 4t, 3 - 4t] on the same line:
   // they touch when 2 - 4t = 1, t = 1/4.
-  check_ee(make(A, V(1, 0, 0), V(2, 0, 0), V(3, 0, 0), A, V(1, 0, 0), V(-2, 0, 0), V(-1, 0, 0)),
+  check_ee(from_points(A, V(1, 0, 0), V(2, 0, 0), V(3, 0, 0), A, V(1, 0, 0), V(-2, 0, 0), V(-1, 0, 0)),
            0.25);
 }
 
@@ -202,14 +195,14 @@ TEST(DegenerateEdgeEdge, CollinearEdgesSlideIntoOverlap) {
 TEST(DegenerateVertexFace, LinearCubicStaticTriangle) {
   // Static triangle, vertex falling straight down: d is linear. z = 1 - 2t = 0
   // at t = 1/2, at (1, 1) inside.
-  check_vf(make(V(1, 1, 1), A, B, C, V(1, 1, -1), A, B, C), 0.5);
+  check_vf(from_points(V(1, 1, 1), A, B, C, V(1, 1, -1), A, B, C), 0.5);
 }
 
 TEST(DegenerateVertexFace, LinearCubicTiltingTriangle) {
   // c(t) = (0, 4, 4t - 2): the plane is z = (t - 1/2) y. p(t) = (1, 1, 1 - t):
   // 1 - t = t - 1/2 at t = 3/4, where p = (1, 1, 1/4) projects inside.
   // a3 = a2 = 0 (only c and p move, and only along z).
-  check_vf(make(V(1, 1, 1), A, B, V(0, 4, -2), V(1, 1, 0), A, B, V(0, 4, 2)), 0.75);
+  check_vf(from_points(V(1, 1, 1), A, B, V(0, 4, -2), V(1, 1, 0), A, B, V(0, 4, 2)), 0.75);
 }
 
 TEST(DegenerateVertexFace, QuadraticCubicFirstRootOutsideSecondInside) {
@@ -217,13 +210,13 @@ TEST(DegenerateVertexFace, QuadraticCubicFirstRootOutsideSecondInside) {
   // pz - (t - 1/2) py = 8 (t - 1/4)(t - 1/2): coplanar at t = 1/4, where
   // p = (1, 4, -1) projects to x + y = 5 > 4 (outside), and at t = 1/2, where
   // p = (1, 2, 0) is inside. First contact t = 1/2; a3 = 0 (a, b static).
-  check_vf(make(V(1, 6, -2), A, B, V(0, 4, -2), V(1, -2, 2), A, B, V(0, 4, 2)), 0.5);
+  check_vf(from_points(V(1, 6, -2), A, B, V(0, 4, -2), V(1, -2, 2), A, B, V(0, 4, 2)), 0.5);
 }
 
 TEST(DegenerateEdgeEdge, LinearCubicTranslatingEdge) {
   // Edge a static on the x axis; edge b = (2, -1 .. 1, 1 - 2t) translates down
   // and crosses it at (2, 0, 0) at t = 1/2. a3 = a2 = 0.
-  check_ee(make(A, B, V(2, -1, 1), V(2, 1, 1), A, B, V(2, -1, -1), V(2, 1, -1)), 0.5);
+  check_ee(from_points(A, B, V(2, -1, 1), V(2, 1, 1), A, B, V(2, -1, -1), V(2, 1, -1)), 0.5);
 }
 
 TEST(DegenerateEdgeEdge, QuadraticCubicFirstRootApartSecondCrossing) {
@@ -233,7 +226,7 @@ TEST(DegenerateEdgeEdge, QuadraticCubicFirstRootApartSecondCrossing) {
   // runs from (6, 0) to (1, 4), where x + y >= 5, beside edge a on x + y = 4:
   // no contact. At t = 1/2 edge b = (6, 0)-(1, 2) crosses x + y = 4 at
   // (8/3, 4/3), inside edge a. a3 = 0 (a0, b0 static).
-  check_ee(make(B, V(0, 4, -2), V(6, 0, 0), V(1, 6, -2), B, V(0, 4, 2), V(6, 0, 0), V(1, -2, 2)),
+  check_ee(from_points(B, V(0, 4, -2), V(6, 0, 0), V(1, 6, -2), B, V(0, 4, 2), V(6, 0, 0), V(1, -2, 2)),
            0.5);
 }
 
@@ -244,27 +237,27 @@ TEST(DegenerateVertexFace, DoubleRootGrazingInsideFace) {
   // c(t) = (0, 4, 4t - 2): plane z = (t - 1/2) y. p(t) = (1, 2t, t - 1/2):
   // pz - (t - 1/2) py = -2 (t - 1/2)^2 <= 0, zero only at t = 1/2, where
   // p = (1, 1, 0) is inside the triangle (0,0,0), (4,0,0), (0,4,0).
-  check_vf(make(V(1, 0, -0.5), A, B, V(0, 4, -2), V(1, 2, 0.5), A, B, V(0, 4, 2)), 0.5);
+  check_vf(from_points(V(1, 0, -0.5), A, B, V(0, 4, -2), V(1, 2, 0.5), A, B, V(0, 4, 2)), 0.5);
 }
 
 TEST(DegenerateVertexFace, DoubleRootGrazingOutsideFace) {
   // The same motion shifted to x = 5: at t = 1/2 p = (5, 1, 0), x + y = 6 > 4,
   // sqrt(2) from the hypotenuse; never coplanar otherwise.
-  check_vf(make(V(5, 0, -0.5), A, B, V(0, 4, -2), V(5, 2, 0.5), A, B, V(0, 4, 2)), kMiss);
+  check_vf(from_points(V(5, 0, -0.5), A, B, V(0, 4, -2), V(5, 2, 0.5), A, B, V(0, 4, 2)), kMiss);
 }
 
 TEST(DegenerateEdgeEdge, DoubleRootGrazingCrossing) {
   // Edge a = (0,0,0)-(0, 4, 4t - 2), edge b = (4,0,0)-(-4, 2t, t - 1/2).
   // d(t) = 8 (2t - 1)^2; at t = 1/2 edge b = (4,0,0)-(-4,1,0) crosses x = 0 at
   // y = 1/2, inside edge a = (0,0,0)-(0,4,0).
-  check_ee(make(A, V(0, 4, -2), B, V(-4, 0, -0.5), A, V(0, 4, 2), B, V(-4, 2, 0.5)), 0.5);
+  check_ee(from_points(A, V(0, 4, -2), B, V(-4, 0, -0.5), A, V(0, 4, 2), B, V(-4, 2, 0.5)), 0.5);
 }
 
 TEST(DegenerateEdgeEdge, DoubleRootGrazingApart) {
   // Edge a = (0, 2, 2t - 1)-(0, 4, 4t - 2) (in the same tilting plane), edge b
   // as above: d(t) = 4 (2t - 1)^2. At t = 1/2 edge b crosses x = 0 at y = 1/2,
   // 3/2 short of edge a = y in [2, 4].
-  check_ee(make(V(0, 2, -1), V(0, 4, -2), B, V(-4, 0, -0.5), V(0, 2, 1), V(0, 4, 2), B,
+  check_ee(from_points(V(0, 2, -1), V(0, 4, -2), B, V(-4, 0, -0.5), V(0, 2, 1), V(0, 4, 2), B,
                 V(-4, 2, 0.5)),
            kMiss);
 }
@@ -283,7 +276,7 @@ constexpr double kTripleRootSlack = 1e-3;
 TEST(DegenerateVertexFace, TripleRootInsideFace) {
   // lambda = mu = 1/4: p(1/2) = (0, 1/4, 1/4), inside.
   const Vec3 origin = V(0, 0, 0);
-  check_vf(make(V(-0.25, 0, -0.75), origin, V(-1, 1, 0), V(0, -1, 1), V(0.25, 0.5, 1.25), origin,
+  check_vf(from_points(V(-0.25, 0, -0.75), origin, V(-1, 1, 0), V(0, -1, 1), V(0.25, 0.5, 1.25), origin,
                 V(1, 1, 0), V(0, 1, 1)),
            0.5, kTripleRootSlack);
 }
@@ -291,7 +284,7 @@ TEST(DegenerateVertexFace, TripleRootInsideFace) {
 TEST(DegenerateVertexFace, TripleRootOutsideFace) {
   // lambda = mu = 1: p(1/2) = (0, 1, 1), sqrt(1/2) beyond edge bc.
   const Vec3 origin = V(0, 0, 0);
-  check_vf(make(V(-1, 0, 0), origin, V(-1, 1, 0), V(0, -1, 1), V(1, 2, 2), origin, V(1, 1, 0),
+  check_vf(from_points(V(-1, 0, 0), origin, V(-1, 1, 0), V(0, -1, 1), V(1, 2, 2), origin, V(1, 1, 0),
                 V(0, 1, 1)),
            kMiss);
 }
@@ -301,7 +294,7 @@ TEST(DegenerateEdgeEdge, TripleRootCrossing) {
   // b runs from (0, 0, 1) to (0, 1, -1) and crosses edge a = (0,0,0)-(0,1,0)
   // at (0, 1/2, 0).
   const Vec3 origin = V(0, 0, 0);
-  check_ee(make(origin, V(-1, 1, 0), V(0, -1, 1), V(-1, 2, -2), origin, V(1, 1, 0), V(0, 1, 1),
+  check_ee(from_points(origin, V(-1, 1, 0), V(0, -1, 1), V(-1, 2, -2), origin, V(1, 1, 0), V(0, 1, 1),
                 V(1, 0, 0)),
            0.5, kTripleRootSlack);
 }
@@ -310,7 +303,7 @@ TEST(DegenerateEdgeEdge, TripleRootApart) {
   // lambda = 3, mu = -1: at t = 1/2 edge b = (0,0,1)-(0,3,-1) meets z = 0 at
   // y = 3/2, 1/sqrt(13) from edge a's end (0, 1, 0).
   const Vec3 origin = V(0, 0, 0);
-  check_ee(make(origin, V(-1, 1, 0), V(0, -1, 1), V(-3, 4, -2), origin, V(1, 1, 0), V(0, 1, 1),
+  check_ee(from_points(origin, V(-1, 1, 0), V(0, -1, 1), V(-3, 4, -2), origin, V(1, 1, 0), V(0, 1, 1),
                 V(3, 2, 0)),
            kMiss);
 }
@@ -320,30 +313,30 @@ TEST(DegenerateEdgeEdge, TripleRootApart) {
 
 TEST(DegenerateVertexFace, ContactAtTimeZero) {
   // The vertex starts on the face and leaves it.
-  check_vf(make(V(1, 1, 0), A, B, C, V(1, 1, 1), A, B, C), 0.0);
+  check_vf(from_points(V(1, 1, 0), A, B, C, V(1, 1, 1), A, B, C), 0.0);
 }
 
 TEST(DegenerateVertexFace, ContactAtTimeOne) {
   // The vertex arrives on the face at the end of the step.
-  check_vf(make(V(1, 1, 1), A, B, C, V(1, 1, 0), A, B, C), 1.0);
+  check_vf(from_points(V(1, 1, 1), A, B, C, V(1, 1, 0), A, B, C), 1.0);
 }
 
 TEST(DegenerateVertexFace, ContactAtTimeOneOnTriangleCorner) {
   // The vertex arrives exactly at the corner b at t = 1.
-  check_vf(make(V(4, 0, 2), A, B, C, V(4, 0, 0), A, B, C), 1.0);
+  check_vf(from_points(V(4, 0, 2), A, B, C, V(4, 0, 0), A, B, C), 1.0);
 }
 
 TEST(DegenerateEdgeEdge, ContactAtTimeZero) {
-  check_ee(make(A, B, V(2, -1, 0), V(2, 1, 0), A, B, V(2, -1, 1), V(2, 1, 1)), 0.0);
+  check_ee(from_points(A, B, V(2, -1, 0), V(2, 1, 0), A, B, V(2, -1, 1), V(2, 1, 1)), 0.0);
 }
 
 TEST(DegenerateEdgeEdge, ContactAtTimeOne) {
-  check_ee(make(A, B, V(2, -1, 1), V(2, 1, 1), A, B, V(2, -1, 0), V(2, 1, 0)), 1.0);
+  check_ee(from_points(A, B, V(2, -1, 1), V(2, 1, 1), A, B, V(2, -1, 0), V(2, 1, 0)), 1.0);
 }
 
 TEST(DegenerateEdgeEdge, ContactAtTimeOneEndpointToEndpoint) {
   // Edge b's endpoint lands exactly on edge a's endpoint (4, 0, 0) at t = 1.
-  check_ee(make(A, B, V(4, 0, 2), V(4, 2, 2), A, B, V(4, 0, 0), V(4, 2, 0)), 1.0);
+  check_ee(from_points(A, B, V(4, 0, 2), V(4, 2, 2), A, B, V(4, 0, 0), V(4, 2, 0)), 1.0);
 }
 
 // ---------------------------------------------------------------------------
@@ -352,35 +345,35 @@ TEST(DegenerateEdgeEdge, ContactAtTimeOneEndpointToEndpoint) {
 TEST(DegenerateVertexFace, CollinearTriangleVertexPassesThroughSegment) {
   // Triangle (0,0,0), (4,0,0), (2,0,0) is the segment [0, 4] of the x axis;
   // p(t) = (1, 0, 1 - 2t) crosses it at t = 1/2.
-  check_vf(make(V(1, 0, 1), A, B, V(2, 0, 0), V(1, 0, -1), A, B, V(2, 0, 0)), 0.5);
+  check_vf(from_points(V(1, 0, 1), A, B, V(2, 0, 0), V(1, 0, -1), A, B, V(2, 0, 0)), 0.5);
 }
 
 TEST(DegenerateVertexFace, CollinearTriangleVertexPassesBesideSegment) {
   // p(t) = (1, 1, 1 - 2t): 1 away from the segment at t = 1/2.
-  check_vf(make(V(1, 1, 1), A, B, V(2, 0, 0), V(1, 1, -1), A, B, V(2, 0, 0)), kMiss);
+  check_vf(from_points(V(1, 1, 1), A, B, V(2, 0, 0), V(1, 1, -1), A, B, V(2, 0, 0)), kMiss);
 }
 
 TEST(DegenerateVertexFace, CollinearTriangleVertexPassesBeyondSegmentEnd) {
   // p(t) = (6, 0, 1 - 2t) crosses the segment's line 2 past its end (4, 0, 0).
-  check_vf(make(V(6, 0, 1), A, B, V(2, 0, 0), V(6, 0, -1), A, B, V(2, 0, 0)), kMiss);
+  check_vf(from_points(V(6, 0, 1), A, B, V(2, 0, 0), V(6, 0, -1), A, B, V(2, 0, 0)), kMiss);
 }
 
 TEST(DegenerateVertexFace, CollinearTriangleVertexSlidesAlongLineIntoSegment) {
   // Collinear motion: p(t) = (7 - 8t, 0, 0) reaches the end (4, 0, 0) at
   // t = 3/8.
-  check_vf(make(V(7, 0, 0), A, B, V(2, 0, 0), V(-1, 0, 0), A, B, V(2, 0, 0)), 0.375);
+  check_vf(from_points(V(7, 0, 0), A, B, V(2, 0, 0), V(-1, 0, 0), A, B, V(2, 0, 0)), 0.375);
 }
 
 TEST(DegenerateVertexFace, CoincidentTriangleVertexPassesThroughPoint) {
   // a = b = c = (1, 1, 1); p(t) = (1, 1, 2t) passes through it at t = 1/2.
   const Vec3 point = V(1, 1, 1);
-  check_vf(make(V(1, 1, 0), point, point, point, V(1, 1, 2), point, point, point), 0.5);
+  check_vf(from_points(V(1, 1, 0), point, point, point, V(1, 1, 2), point, point, point), 0.5);
 }
 
 TEST(DegenerateVertexFace, CoincidentTriangleVertexPassesBesidePoint) {
   // p(t) = (2, 1, 2t): 1 away from the point at t = 1/2.
   const Vec3 point = V(1, 1, 1);
-  check_vf(make(V(2, 1, 0), point, point, point, V(2, 1, 2), point, point, point), kMiss);
+  check_vf(from_points(V(2, 1, 0), point, point, point, V(2, 1, 2), point, point, point), kMiss);
 }
 
 TEST(DegenerateVertexFace, TriangleCollapsingToSegmentPassesVertex) {
@@ -388,7 +381,7 @@ TEST(DegenerateVertexFace, TriangleCollapsingToSegmentPassesVertex) {
   // vertex (3, 0.25, 1 - t) sits above the triangle until it lands on z = 0 at
   // t = 1, where the triangle is the segment [0, 4] and p = (3, 0.25, 0) is
   // 1/4 beside it. Before that, at t < 1 the vertex is at height 1 - t > 0.
-  check_vf(make(V(3, 0.25, 1), A, B, V(2, 4, 0), V(3, 0.25, 0), A, B, V(2, 0, 0)), kMiss);
+  check_vf(from_points(V(3, 0.25, 1), A, B, V(2, 4, 0), V(3, 0.25, 0), A, B, V(2, 0, 0)), kMiss);
 }
 
 // The same in general position (no axis-aligned shortcut): the contact set
@@ -400,13 +393,13 @@ TEST(DegenerateVertexFace, ZeroAreaTriangleInGeneralPositionVertexCrosses) {
   // (s = 1/2): the path is not parallel to the segment, so it meets the
   // segment's line once.
   const Vec3 b = V(4, 2, 1);
-  check_vf(make(V(1, 2, -0.5), A, b, b, V(3, 0, 1.5), A, b, b), 0.5);
+  check_vf(from_points(V(1, 2, -0.5), A, b, b, V(3, 0, 1.5), A, b, b), 0.5);
 }
 
 TEST(DegenerateVertexFace, CollinearTriangleInGeneralPositionVertexCrosses) {
   // c = 2b: a = (0,0,0), b = (4,2,1), c = (8,4,2) on one line; same vertex path,
   // crossing at (2,1,1/2) at t = 1/2.
-  check_vf(make(V(1, 2, -0.5), A, V(4, 2, 1), V(8, 4, 2), V(3, 0, 1.5), A, V(4, 2, 1), V(8, 4, 2)),
+  check_vf(from_points(V(1, 2, -0.5), A, V(4, 2, 1), V(8, 4, 2), V(3, 0, 1.5), A, V(4, 2, 1), V(8, 4, 2)),
            0.5);
 }
 
@@ -415,7 +408,7 @@ TEST(DegenerateVertexFace, CoplanarVertexCrossesZeroAreaTriangle) {
   // p(t) = (1 + 2t, 2 - 2t) is on that line when 2 - 2t = (1 + 2t) / 2, only
   // at t = 1/2, at (2, 1), the segment's midpoint.
   const Vec3 b = V(4, 2, 0);
-  check_vf(make(V(1, 2, 0), A, b, b, V(3, 0, 0), A, b, b), 0.5);
+  check_vf(from_points(V(1, 2, 0), A, b, b, V(3, 0, 0), A, b, b), 0.5);
 }
 
 // ---------------------------------------------------------------------------
@@ -424,30 +417,30 @@ TEST(DegenerateVertexFace, CoplanarVertexCrossesZeroAreaTriangle) {
 TEST(DegenerateEdgeEdge, PointEdgePassesThroughEdge) {
   // Edge a is the point (2, 0, 1 - 2t); it crosses edge b = [0, 4] x {0} x {0}
   // at t = 1/2.
-  check_ee(make(V(2, 0, 1), V(2, 0, 1), A, B, V(2, 0, -1), V(2, 0, -1), A, B), 0.5);
+  check_ee(from_points(V(2, 0, 1), V(2, 0, 1), A, B, V(2, 0, -1), V(2, 0, -1), A, B), 0.5);
 }
 
 TEST(DegenerateEdgeEdge, PointEdgeMissesEdge) {
   // The point (2, 1, 1 - 2t) passes 1 beside edge b.
-  check_ee(make(V(2, 1, 1), V(2, 1, 1), A, B, V(2, 1, -1), V(2, 1, -1), A, B), kMiss);
+  check_ee(from_points(V(2, 1, 1), V(2, 1, 1), A, B, V(2, 1, -1), V(2, 1, -1), A, B), kMiss);
 }
 
 TEST(DegenerateEdgeEdge, PointEdgeHitsEndOfEdge) {
   // The point (4, 0, 1 - 2t) passes exactly through edge b's endpoint.
-  check_ee(make(A, B, V(4, 0, 1), V(4, 0, 1), A, B, V(4, 0, -1), V(4, 0, -1)), 0.5);
+  check_ee(from_points(A, B, V(4, 0, 1), V(4, 0, 1), A, B, V(4, 0, -1), V(4, 0, -1)), 0.5);
 }
 
 TEST(DegenerateEdgeEdge, TwoPointEdgesMeet) {
   // Both edges are points: (1, 1, 1 - 2t) meets (1, 1, 0) at t = 1/2.
   const Vec3 still = V(1, 1, 0);
-  check_ee(make(V(1, 1, 1), V(1, 1, 1), still, still, V(1, 1, -1), V(1, 1, -1), still, still),
+  check_ee(from_points(V(1, 1, 1), V(1, 1, 1), still, still, V(1, 1, -1), V(1, 1, -1), still, still),
            0.5);
 }
 
 TEST(DegenerateEdgeEdge, TwoPointEdgesMiss) {
   // (1, 1, 1 - 2t) passes 1 beside (1, 2, 0).
   const Vec3 still = V(1, 2, 0);
-  check_ee(make(V(1, 1, 1), V(1, 1, 1), still, still, V(1, 1, -1), V(1, 1, -1), still, still),
+  check_ee(from_points(V(1, 1, 1), V(1, 1, 1), still, still, V(1, 1, -1), V(1, 1, -1), still, still),
            kMiss);
 }
 
@@ -457,7 +450,7 @@ TEST(DegenerateEdgeEdge, TwoPointEdgesMiss) {
 TEST(DegenerateEdgeEdge, ParallelEdgesBecomeCollinearOverlapping) {
   // Edge b = [2, 6] x {0} x {1 - 2t} drops onto edge a = [0, 4] x {0} x {0}:
   // collinear and overlapping on [2, 4] at t = 1/2.
-  check_ee(make(A, B, V(2, 0, 1), V(6, 0, 1), A, B, V(2, 0, -1), V(6, 0, -1)), 0.5);
+  check_ee(from_points(A, B, V(2, 0, 1), V(6, 0, 1), A, B, V(2, 0, -1), V(6, 0, -1)), 0.5);
 }
 
 TEST(DegenerateEdgeEdge, ParallelEdgesInGeneralPositionBecomeCollinear) {
@@ -465,7 +458,7 @@ TEST(DegenerateEdgeEdge, ParallelEdgesInGeneralPositionBecomeCollinear) {
   // (1 - 2t)(-1, 1, 1), which has a component across the edges' direction
   // (4,2,1) for t != 1/2: parallel and apart before t = 1/2, collinear and
   // overlapping on (2,1,1/2)-(4,2,1) at t = 1/2.
-  check_ee(make(A, V(4, 2, 1), V(1, 2, 1.5), V(5, 4, 2.5), A, V(4, 2, 1), V(3, 0, -0.5),
+  check_ee(from_points(A, V(4, 2, 1), V(1, 2, 1.5), V(5, 4, 2.5), A, V(4, 2, 1), V(3, 0, -0.5),
                 V(7, 2, 0.5)),
            0.5);
 }
@@ -474,74 +467,74 @@ TEST(DegenerateEdgeEdge, CoplanarParallelEdgesInGeneralPositionBecomeCollinear) 
   // In z = 0: edge a = (0,0)-(4,2); edge b = (2,1)-(6,3) shifted by
   // (1 - 2t)(-1, 2), perpendicular to (4, 2): apart by sqrt(5) |1 - 2t|,
   // collinear and overlapping on (2,1)-(4,2) at t = 1/2.
-  check_ee(make(A, V(4, 2, 0), V(1, 3, 0), V(5, 5, 0), A, V(4, 2, 0), V(3, -1, 0), V(7, 1, 0)),
+  check_ee(from_points(A, V(4, 2, 0), V(1, 3, 0), V(5, 5, 0), A, V(4, 2, 0), V(3, -1, 0), V(7, 1, 0)),
            0.5);
 }
 
 TEST(DegenerateEdgeEdge, ParallelEdgesPassOffset) {
   // The same motion 1 aside in y: parallel at distance >= 1 throughout.
-  check_ee(make(A, B, V(2, 1, 1), V(6, 1, 1), A, B, V(2, 1, -1), V(6, 1, -1)), kMiss);
+  check_ee(from_points(A, B, V(2, 1, 1), V(6, 1, 1), A, B, V(2, 1, -1), V(6, 1, -1)), kMiss);
 }
 
 TEST(DegenerateEdgeEdge, ParallelEdgesCollinearButDisjoint) {
   // Edge b = [5, 6] on edge a's line, moving along z: collinear at t = 1/2 but
   // 1 past edge a's end.
-  check_ee(make(A, B, V(5, 0, 1), V(6, 0, 1), A, B, V(5, 0, -1), V(6, 0, -1)), kMiss);
+  check_ee(from_points(A, B, V(5, 0, 1), V(6, 0, 1), A, B, V(5, 0, -1), V(6, 0, -1)), kMiss);
 }
 
 TEST(DegenerateEdgeEdge, ParallelEdgesTouchEndToEnd) {
   // Edge b = [4, 6] lands on the line of edge a = [0, 4]: they share the single
   // point (4, 0, 0) at t = 1/2.
-  check_ee(make(A, B, V(4, 0, 1), V(6, 0, 1), A, B, V(4, 0, -1), V(6, 0, -1)), 0.5);
+  check_ee(from_points(A, B, V(4, 0, 1), V(6, 0, 1), A, B, V(4, 0, -1), V(6, 0, -1)), 0.5);
 }
 
 // ---------------------------------------------------------------------------
 // Points that do not move.
 
 TEST(DegenerateVertexFace, StaticTouchingAllTheTime) {
-  check_vf(make_static(V(1, 1, 0), A, B, C), 0.0);
+  check_vf(at_rest(V(1, 1, 0), A, B, C), 0.0);
 }
 
 TEST(DegenerateVertexFace, StaticVertexOnEdgeAllTheTime) {
-  check_vf(make_static(V(2, 2, 0), A, B, C), 0.0);
+  check_vf(at_rest(V(2, 2, 0), A, B, C), 0.0);
 }
 
 TEST(DegenerateVertexFace, StaticSeparated) {
-  check_vf(make_static(V(1, 1, 1), A, B, C), kMiss);
+  check_vf(at_rest(V(1, 1, 1), A, B, C), kMiss);
 }
 
 TEST(DegenerateVertexFace, StaticCoplanarSeparated) {
-  check_vf(make_static(V(3, 3, 0), A, B, C), kMiss);
+  check_vf(at_rest(V(3, 3, 0), A, B, C), kMiss);
 }
 
 TEST(DegenerateEdgeEdge, StaticCrossingAllTheTime) {
-  check_ee(make_static(A, B, V(2, -1, 0), V(2, 1, 0)), 0.0);
+  check_ee(at_rest(A, B, V(2, -1, 0), V(2, 1, 0)), 0.0);
 }
 
 TEST(DegenerateEdgeEdge, StaticSeparated) {
-  check_ee(make_static(A, B, V(2, -1, 1), V(2, 1, 1)), kMiss);
+  check_ee(at_rest(A, B, V(2, -1, 1), V(2, 1, 1)), kMiss);
 }
 
 TEST(DegenerateEdgeEdge, StaticCoplanarSeparated) {
   // Both in z = 0; edge b = (5, -1)-(5, 1) is 1 past edge a's end.
-  check_ee(make_static(A, B, V(5, -1, 0), V(5, 1, 0)), kMiss);
+  check_ee(at_rest(A, B, V(5, -1, 0), V(5, 1, 0)), kMiss);
 }
 
 TEST(DegenerateVertexFace, AllPointsCoincideAndStayStill) {
   // Everything is the one point (1, 1, 1): touching throughout.
   const Vec3 point = V(1, 1, 1);
-  check_vf(make_static(point, point, point, point), 0.0);
+  check_vf(at_rest(point, point, point, point), 0.0);
 }
 
 TEST(DegenerateEdgeEdge, AllPointsAtOriginThroughout) {
   const Vec3 origin = V(0, 0, 0);
-  check_ee(make_static(origin, origin, origin, origin), 0.0);
+  check_ee(at_rest(origin, origin, origin, origin), 0.0);
 }
 
 TEST(DegenerateEdgeEdge, AllPointsCoincideAndMoveTogether) {
   // Four copies of one moving point: in contact throughout.
   const Vec3 from = V(1, 2, 3), to = V(-3, 0.5, 8);
-  check_ee(make(from, from, from, from, to, to, to, to), 0.0);
+  check_ee(from_points(from, from, from, from, to, to, to, to), 0.0);
 }
 
 // ---------------------------------------------------------------------------
@@ -549,12 +542,12 @@ TEST(DegenerateEdgeEdge, AllPointsCoincideAndMoveTogether) {
 
 TEST(DegenerateEdgeEdge, SharedEndpointTouchesAtStart) {
   // Both edges start at the origin; edge b then moves away to (1,1,1)-(1,5,1).
-  check_ee(make(A, B, A, V(0, 4, 0), A, B, V(1, 1, 1), V(1, 5, 1)), 0.0);
+  check_ee(from_points(A, B, A, V(0, 4, 0), A, B, V(1, 1, 1), V(1, 5, 1)), 0.0);
 }
 
 TEST(DegenerateEdgeEdge, SharedEndpointThroughout) {
   // Mesh neighbours: the edges share the endpoint (0,0,0) for all t.
-  check_ee(make(A, B, A, V(0, 4, 1), A, V(4, 1, 0), A, V(1, 4, 0)), 0.0);
+  check_ee(from_points(A, B, A, V(0, 4, 1), A, V(4, 1, 0), A, V(1, 4, 0)), 0.0);
 }
 
 TEST(DegenerateEdgeEdge, SharedEndpointAtEndOnly) {
@@ -562,17 +555,17 @@ TEST(DegenerateEdgeEdge, SharedEndpointAtEndOnly) {
   // at t = 1; edge b stays in x >= 0, y >= 0, z >= 0 away from edge a before:
   // b0(t) = (2 - 2t, 2 - 2t, 2 - 2t), b1 = (2, 4, 2) fixed; edge a is [0, 4] on
   // the x axis. Points of edge b have y >= 2 - 2t > 0 for t < 1.
-  check_ee(make(A, B, V(2, 2, 2), V(2, 4, 2), A, B, A, V(2, 4, 2)), 1.0);
+  check_ee(from_points(A, B, V(2, 2, 2), V(2, 4, 2), A, B, A, V(2, 4, 2)), 1.0);
 }
 
 TEST(DegenerateVertexFace, VertexIsTriangleCorner) {
   // p is the corner a itself, moving with it.
-  check_vf(make(A, A, B, C, V(1, 1, 1), V(1, 1, 1), V(5, 1, 0), V(0, 4, 3)), 0.0);
+  check_vf(from_points(A, A, B, C, V(1, 1, 1), V(1, 1, 1), V(5, 1, 0), V(0, 4, 3)), 0.0);
 }
 
 TEST(DegenerateVertexFace, VertexStartsAtCornerAndLeaves) {
   // p starts at corner b and moves straight up while the triangle stays.
-  check_vf(make(B, A, B, C, V(4, 0, 1), A, B, C), 0.0);
+  check_vf(from_points(B, A, B, C, V(4, 0, 1), A, B, C), 0.0);
 }
 
 // ---------------------------------------------------------------------------
@@ -581,62 +574,62 @@ TEST(DegenerateVertexFace, VertexStartsAtCornerAndLeaves) {
 TEST(DegenerateVertexFace, NearMissBesideAxisAlignedEdge) {
   // p(t) = (2, -1.25 * 2^-10, 1 - 2t) crosses z = 0 about 1.2e-3 beside edge ab.
   const double y = -0x1.4p-10;
-  check_vf(make(V(2, y, 1), A, B, C, V(2, y, -1), A, B, C), kMiss);
+  check_vf(from_points(V(2, y, 1), A, B, C, V(2, y, -1), A, B, C), kMiss);
 }
 
 TEST(DegenerateVertexFace, NearMissBesideDiagonalEdge) {
   // p crosses z = 0 at (2 + 2^-10, 2 + 2^-10), 2^-10 sqrt(2) ~ 1.4e-3 beyond
   // the hypotenuse x + y = 4.
   const double x = 2 + 0x1p-10;
-  check_vf(make(V(x, x, 1), A, B, C, V(x, x, -1), A, B, C), kMiss);
+  check_vf(from_points(V(x, x, 1), A, B, C, V(x, x, -1), A, B, C), kMiss);
 }
 
 TEST(DegenerateVertexFace, NearMissBesideCorner) {
   // p passes 1.25 * 2^-10 ~ 1.2e-3 beyond corner c = (0, 4, 0) along the y axis.
   const double y = 4 + 0x1.4p-10;
-  check_vf(make(V(0, y, 1), A, B, C, V(0, y, -1), A, B, C), kMiss);
+  check_vf(from_points(V(0, y, 1), A, B, C, V(0, y, -1), A, B, C), kMiss);
 }
 
 TEST(DegenerateVertexFace, ExactlyThroughDiagonalEdge) {
   // p(t) = (2, 2, 1 - 2t) crosses the hypotenuse at its midpoint at t = 1/2.
-  check_vf(make(V(2, 2, 1), A, B, C, V(2, 2, -1), A, B, C), 0.5);
+  check_vf(from_points(V(2, 2, 1), A, B, C, V(2, 2, -1), A, B, C), 0.5);
 }
 
 TEST(DegenerateVertexFace, ExactlyThroughAxisAlignedEdge) {
-  check_vf(make(V(1, 0, 1), A, B, C, V(1, 0, -1), A, B, C), 0.5);
+  check_vf(from_points(V(1, 0, 1), A, B, C, V(1, 0, -1), A, B, C), 0.5);
 }
 
 TEST(DegenerateVertexFace, ExactlyThroughCorner) {
-  check_vf(make(V(0, 4, 1), A, B, C, V(0, 4, -1), A, B, C), 0.5);
+  check_vf(from_points(V(0, 4, 1), A, B, C, V(0, 4, -1), A, B, C), 0.5);
 }
 
 TEST(DegenerateVertexFace, ExactlyThroughEdgeAtQuarterTime) {
   // p(t) = (0.75, 3.25, 1 - 4t) reaches z = 0 at t = 1/4, on x + y = 4.
-  check_vf(make(V(0.75, 3.25, 1), A, B, C, V(0.75, 3.25, -3), A, B, C), 0.25);
+  check_vf(from_points(V(0.75, 3.25, 1), A, B, C, V(0.75, 3.25, -3), A, B, C), 0.25);
 }
 
 TEST(DegenerateEdgeEdge, NearMissBesideEndpoint) {
   // Edge b = (4 + 1.25 * 2^-10, -1 .. 1, 1 - 2t) passes about 1.2e-3 beyond
   // edge a's end.
   const double x = 4 + 0x1.4p-10;
-  check_ee(make(A, B, V(x, -1, 1), V(x, 1, 1), A, B, V(x, -1, -1), V(x, 1, -1)), kMiss);
+  check_ee(from_points(A, B, V(x, -1, 1), V(x, 1, 1), A, B, V(x, -1, -1), V(x, 1, -1)), kMiss);
 }
 
 TEST(DegenerateEdgeEdge, NearMissAbove) {
   // Crossing edges, edge b stops 1.25 * 2^-10 ~ 1.2e-3 above edge a at t = 1.
   const double z = 0x1.4p-10;
-  check_ee(make(A, B, V(2, -1, 1), V(2, 1, 1), A, B, V(2, -1, z), V(2, 1, z)), kMiss);
+  check_ee(from_points(A, B, V(2, -1, 1), V(2, 1, 1), A, B, V(2, -1, z), V(2, 1, z)), kMiss);
 }
 
 TEST(DegenerateEdgeEdge, ExactlyThroughEndpoint) {
   // Edge b = (4, -1 .. 1, 1 - 2t) passes exactly through edge a's end (4,0,0).
-  check_ee(make(A, B, V(4, -1, 1), V(4, 1, 1), A, B, V(4, -1, -1), V(4, 1, -1)), 0.5);
+  check_ee(from_points(A, B, V(4, -1, 1), V(4, 1, 1), A, B, V(4, -1, -1), V(4, 1, -1)), 0.5);
 }
 
 TEST(DegenerateEdgeEdge, EndpointToEndpointMidStep) {
   // Edge b = (4, 0 .. 2, 1 - 2t): its endpoint (4, 0, 1 - 2t) meets edge a's
   // endpoint (4, 0, 0) at t = 1/2.
-  check_ee(make(A, B, V(4, 0, 1), V(4, 2, 1), A, B, V(4, 0, -1), V(4, 2, -1)), 0.5);
+  check_ee(from_points(A, B, V(4, 0, 1), V(4, 2, 1), A, B, V(4, 0, -1), V(4, 2, -1)), 0.5);
 }
 
 // ---------------------------------------------------------------------------
@@ -660,7 +653,7 @@ void check_all_modes_agree(Kind kind, const Query& q, std::optional<double> true
 }
 
 TEST(DegenerateAllModes, VertexFallsThroughMiddleOfTriangle) {
-  check_all_modes_agree(Kind::vertex_face, make(V(1, 1, 1), A, B, C, V(1, 1, -1), A, B, C), 0.5,
+  check_all_modes_agree(Kind::vertex_face, from_points(V(1, 1, 1), A, B, C, V(1, 1, -1), A, B, C), 0.5,
                         1e-6);
 }
 
@@ -668,27 +661,27 @@ TEST(DegenerateAllModes, VertexFallsThroughMovingTriangle) {
   // The triangle rises by 1 while the vertex falls by 3 from height 2:
   // relative height 2 - 4t, zero at t = 1/2, at (1, 1.5) inside.
   check_all_modes_agree(Kind::vertex_face,
-                        make(V(1, 1.5, 2), A, B, C, V(1, 1.5, -1), V(0, 0, 1), V(4, 0, 1),
+                        from_points(V(1, 1.5, 2), A, B, C, V(1, 1.5, -1), V(0, 0, 1), V(4, 0, 1),
                              V(0, 4, 1)),
                         0.5, 1e-6);
 }
 
 TEST(DegenerateAllModes, VertexFallsBesideTriangle) {
-  check_all_modes_agree(Kind::vertex_face, make(V(3, 3, 1), A, B, C, V(3, 3, -1), A, B, C), kMiss,
+  check_all_modes_agree(Kind::vertex_face, from_points(V(3, 3, 1), A, B, C, V(3, 3, -1), A, B, C), kMiss,
                         0);
 }
 
 TEST(DegenerateAllModes, EdgesCrossCleanly) {
   // Edge b = (1, -1 .. 1, 0.75 - t) (diagonal in x) crosses edge a at t = 3/4.
   check_all_modes_agree(Kind::edge_edge,
-                        make(A, B, V(1, -1, 0.75), V(3, 1, 0.75), A, B, V(1, -1, -0.25),
+                        from_points(A, B, V(1, -1, 0.75), V(3, 1, 0.75), A, B, V(1, -1, -0.25),
                              V(3, 1, -0.25)),
                         0.75, 1e-6);
 }
 
 TEST(DegenerateAllModes, EdgesPassApart) {
   check_all_modes_agree(Kind::edge_edge,
-                        make(A, B, V(6, -1, 1), V(6, 1, 1), A, B, V(6, -1, -1), V(6, 1, -1)), kMiss,
+                        from_points(A, B, V(6, -1, 1), V(6, 1, 1), A, B, V(6, -1, -1), V(6, 1, -1)), kMiss,
                         0);
 }
 

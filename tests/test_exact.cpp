@@ -25,6 +25,7 @@
 #include "exact/root_isolation.hpp"
 #include "reference/inclusion_solver.hpp"
 #include "reference/reference.hpp"
+#include "query_builders.hpp"
 #include "reference/scaled_query.hpp"
 #include "same_answers.hpp"
 #include "shared_data.hpp"
@@ -139,14 +140,8 @@ TEST(ExactAlgebra, LowerBoundNeverAboveTheRoot) {
 
 Vec3 V(double x, double y, double z) { return Vec3(x, y, z); }
 
-// Points at t0 and t1 in the order of Query (VF: p, a, b, c; EE: ea0, ea1, eb0, eb1).
-Query make(const Vec3& x0, const Vec3& y0, const Vec3& z0, const Vec3& w0, const Vec3& x1,
-           const Vec3& y1, const Vec3& z1, const Vec3& w1) {
-  return Query{{x0, y0, z0, w0, x1, y1, z1, w1}};
-}
-Query make_static(const Vec3& x, const Vec3& y, const Vec3& z, const Vec3& w) {
-  return make(x, y, z, w, x, y, z, w);
-}
+using testing::at_rest;
+using testing::from_points;
 
 Options exact_options(bool need_toi = true) {
   Options options;
@@ -220,46 +215,46 @@ const double kTiny = 0x1p-50;  // far below conservative mode's tolerance (1e-9 
 
 TEST(ExactCoplanarMotion, VertexSlidesIntoTriangle) {
   // p(t) = (-2 + 4t, 1, 0) reaches the edge x = 0 at t = 1/2.
-  check_vf(make(V(-2, 1, 0), A, B, C, V(2, 1, 0), A, B, C), 0.5L);
+  check_vf(from_points(V(-2, 1, 0), A, B, C, V(2, 1, 0), A, B, C), 0.5L);
 }
 
 TEST(ExactCoplanarMotion, VertexSlidesPastApexByATinyGap) {
   // p(t) = (-2 + 4t, 4 + 2^-50, 0) passes 2^-50 above the apex (0, 4, 0).
-  const Query q = make(V(-2, 4 + kTiny, 0), A, B, C, V(2, 4 + kTiny, 0), A, B, C);
+  const Query q = from_points(V(-2, 4 + kTiny, 0), A, B, C, V(2, 4 + kTiny, 0), A, B, C);
   expect_conservative_only_within_tolerance(Kind::vertex_face, q);
   check_vf(q, kMiss);
 }
 
 TEST(ExactCoplanarMotion, VertexSlidesExactlyThroughApex) {
-  check_vf(make(V(-2, 4, 0), A, B, C, V(2, 4, 0), A, B, C), 0.5L);
+  check_vf(from_points(V(-2, 4, 0), A, B, C, V(2, 4, 0), A, B, C), 0.5L);
 }
 
 TEST(ExactCoplanarMotion, TriangleSlidesOntoStaticVertex) {
   // The hypotenuse x + y = 4 + 4t reaches (5, 1, 0) at t = 1/2.
-  check_vf(make(V(5, 1, 0), A, B, C, V(5, 1, 0), V(4, 0, 0), V(8, 0, 0), V(4, 4, 0)), 0.5L);
+  check_vf(from_points(V(5, 1, 0), A, B, C, V(5, 1, 0), V(4, 0, 0), V(8, 0, 0), V(4, 4, 0)), 0.5L);
 }
 
 TEST(ExactCoplanarMotion, EdgesSlideIntoCrossing) {
   // Edge b's endpoint (3, -1 + 4t) reaches edge a (x axis, [0, 4]) at t = 1/4.
-  check_ee(make(A, B, V(1, -2, 0), V(3, -1, 0), A, B, V(1, 2, 0), V(3, 3, 0)), 0.25L);
+  check_ee(from_points(A, B, V(1, -2, 0), V(3, -1, 0), A, B, V(1, 2, 0), V(3, 3, 0)), 0.25L);
 }
 
 TEST(ExactCoplanarMotion, EdgesSlidePastByATinyGap) {
   // Edge b's endpoint (4 + 2^-50, -1 + 4t) passes just beyond edge a's end.
   const double x = 4 + kTiny;
-  const Query q = make(A, B, V(x, -2, 0), V(6, -1, 0), A, B, V(x, 2, 0), V(6, 3, 0));
+  const Query q = from_points(A, B, V(x, -2, 0), V(6, -1, 0), A, B, V(x, 2, 0), V(6, 3, 0));
   check_ee(q, kMiss);
 }
 
 TEST(ExactCoplanarMotion, CollinearEdgesSlideIntoOverlap) {
   // Edge b = [2 - 4t, 3 - 4t] on edge a's line reaches edge a = [0, 1] at t = 1/4.
-  check_ee(make(A, V(1, 0, 0), V(2, 0, 0), V(3, 0, 0), A, V(1, 0, 0), V(-2, 0, 0), V(-1, 0, 0)),
+  check_ee(from_points(A, V(1, 0, 0), V(2, 0, 0), V(3, 0, 0), A, V(1, 0, 0), V(-2, 0, 0), V(-1, 0, 0)),
            0.25L);
 }
 
 TEST(ExactCoplanarMotion, RationalToiOfAThird) {
   // p(t) = (-1 + 3t, 1, 0) reaches the edge x = 0 at t = 1/3 (not dyadic).
-  check_vf(make(V(-1, 1, 0), A, B, C, V(2, 1, 0), A, B, C), 1.0L / 3);
+  check_vf(from_points(V(-1, 1, 0), A, B, C, V(2, 1, 0), A, B, C), 1.0L / 3);
 }
 
 // A triangle that is degenerate at the root.
@@ -267,12 +262,12 @@ TEST(ExactCoplanarMotion, RationalToiOfAThird) {
 TEST(ExactDegenerateTriangle, CollapsesToASegmentWhereTheVertexLands) {
   // c(t) = (2, 4 - 8t, 0): the triangle is the segment [0, 4] of the x axis at
   // t = 1/2, when p(t) = (1, 0, 1 - 2t) reaches z = 0 on it.
-  check_vf(make(V(1, 0, 1), A, B, V(2, 4, 0), V(1, 0, -1), A, B, V(2, -4, 0)), 0.5L);
+  check_vf(from_points(V(1, 0, 1), A, B, V(2, 4, 0), V(1, 0, -1), A, B, V(2, -4, 0)), 0.5L);
 }
 
 TEST(ExactDegenerateTriangle, CollapsesToASegmentBesideTheVertex) {
   // The same with p 2^-50 beside the segment when it lands.
-  const Query q = make(V(1, kTiny, 1), A, B, V(2, 4, 0), V(1, kTiny, -1), A, B, V(2, -4, 0));
+  const Query q = from_points(V(1, kTiny, 1), A, B, V(2, 4, 0), V(1, kTiny, -1), A, B, V(2, -4, 0));
   expect_conservative_only_within_tolerance(Kind::vertex_face, q);
   check_vf(q, kMiss);
 }
@@ -281,47 +276,47 @@ TEST(ExactDegenerateTriangle, ZeroAreaInGeneralPosition) {
   // a = 0, b = c = (4, 2, 1): p(t) = (1 + 2t, 2 - 2t, -1/2 + 2t) meets the
   // segment at (2, 1, 1/2) at t = 1/2 only.
   const Vec3 b = V(4, 2, 1);
-  check_vf(make(V(1, 2, -0.5), A, b, b, V(3, 0, 1.5), A, b, b), 0.5L);
+  check_vf(from_points(V(1, 2, -0.5), A, b, b, V(3, 0, 1.5), A, b, b), 0.5L);
 }
 
 TEST(ExactDegenerateTriangle, AllCornersOnePoint) {
   const Vec3 point = V(1, 1, 1);
-  check_vf(make(V(1, 1, 0), point, point, point, V(1, 1, 2), point, point, point), 0.5L);
-  check_vf(make(V(1, 1 + kTiny, 0), point, point, point, V(1, 1 + kTiny, 2), point, point, point),
+  check_vf(from_points(V(1, 1, 0), point, point, point, V(1, 1, 2), point, point, point), 0.5L);
+  check_vf(from_points(V(1, 1 + kTiny, 0), point, point, point, V(1, 1 + kTiny, 2), point, point, point),
            kMiss);
 }
 
 // Parallel and collinear edges.
 
 TEST(ExactParallelEdges, BecomeCollinearOverlapping) {
-  check_ee(make(A, B, V(2, 0, 1), V(6, 0, 1), A, B, V(2, 0, -1), V(6, 0, -1)), 0.5L);
+  check_ee(from_points(A, B, V(2, 0, 1), V(6, 0, 1), A, B, V(2, 0, -1), V(6, 0, -1)), 0.5L);
 }
 
 TEST(ExactParallelEdges, BecomeCollinearInGeneralPosition) {
-  check_ee(make(A, V(4, 2, 1), V(1, 2, 1.5), V(5, 4, 2.5), A, V(4, 2, 1), V(3, 0, -0.5),
+  check_ee(from_points(A, V(4, 2, 1), V(1, 2, 1.5), V(5, 4, 2.5), A, V(4, 2, 1), V(3, 0, -0.5),
                 V(7, 2, 0.5)),
            0.5L);
 }
 
 TEST(ExactParallelEdges, TouchEndToEnd) {
-  check_ee(make(A, B, V(4, 0, 1), V(6, 0, 1), A, B, V(4, 0, -1), V(6, 0, -1)), 0.5L);
+  check_ee(from_points(A, B, V(4, 0, 1), V(6, 0, 1), A, B, V(4, 0, -1), V(6, 0, -1)), 0.5L);
 }
 
 TEST(ExactParallelEdges, CollinearWithATinyGap) {
   // Edge b = [4 + 2^-50, 6] lands on edge a's line just past its end.
   const double x = 4 + kTiny;
-  const Query q = make(A, B, V(x, 0, 1), V(6, 0, 1), A, B, V(x, 0, -1), V(6, 0, -1));
+  const Query q = from_points(A, B, V(x, 0, 1), V(6, 0, 1), A, B, V(x, 0, -1), V(6, 0, -1));
   expect_conservative_only_within_tolerance(Kind::edge_edge, q);
   check_ee(q, kMiss);
 }
 
 TEST(ExactParallelEdges, PassOffset) {
-  check_ee(make(A, B, V(2, 1, 1), V(6, 1, 1), A, B, V(2, 1, -1), V(6, 1, -1)), kMiss);
+  check_ee(from_points(A, B, V(2, 1, 1), V(6, 1, 1), A, B, V(2, 1, -1), V(6, 1, -1)), kMiss);
 }
 
 TEST(ExactParallelEdges, ZeroLengthEdgeThroughEdge) {
-  check_ee(make(V(2, 0, 1), V(2, 0, 1), A, B, V(2, 0, -1), V(2, 0, -1), A, B), 0.5L);
-  check_ee(make(V(2, kTiny, 1), V(2, kTiny, 1), A, B, V(2, kTiny, -1), V(2, kTiny, -1), A, B),
+  check_ee(from_points(V(2, 0, 1), V(2, 0, 1), A, B, V(2, 0, -1), V(2, 0, -1), A, B), 0.5L);
+  check_ee(from_points(V(2, kTiny, 1), V(2, kTiny, 1), A, B, V(2, kTiny, -1), V(2, kTiny, -1), A, B),
            kMiss);
 }
 
@@ -330,12 +325,12 @@ TEST(ExactParallelEdges, ZeroLengthEdgeThroughEdge) {
 TEST(ExactMultipleRoots, DoubleRootGrazingInsideFace) {
   // Plane z = (t - 1/2) y, p(t) = (1, 2t, t - 1/2): d = -2 (t - 1/2)^2, p at
   // (1, 1, 0) inside at t = 1/2.
-  check_vf(make(V(1, 0, -0.5), A, B, V(0, 4, -2), V(1, 2, 0.5), A, B, V(0, 4, 2)), 0.5L);
+  check_vf(from_points(V(1, 0, -0.5), A, B, V(0, 4, -2), V(1, 2, 0.5), A, B, V(0, 4, 2)), 0.5L);
 }
 
 TEST(ExactMultipleRoots, DoubleRootGrazingExactlyOnAnEdge) {
   // The same motion at x = 0: p(1/2) = (0, 1, 0) lies on edge ca.
-  check_vf(make(V(0, 0, -0.5), A, B, V(0, 4, -2), V(0, 2, 0.5), A, B, V(0, 4, 2)), 0.5L);
+  check_vf(from_points(V(0, 0, -0.5), A, B, V(0, 4, -2), V(0, 2, 0.5), A, B, V(0, 4, 2)), 0.5L);
 }
 
 TEST(ExactMultipleRoots, DoubleRootGrazingJustOutsideAnEdge) {
@@ -343,14 +338,14 @@ TEST(ExactMultipleRoots, DoubleRootGrazingJustOutsideAnEdge) {
   // floating-point search's tolerance; the vertex stays in x = -2^-50 and
   // the edge in x = 0, so an outside proof can exclude it at every time.
   const Query q =
-      make(V(-kTiny, 0, -0.5), A, B, V(0, 4, -2), V(-kTiny, 2, 0.5), A, B, V(0, 4, 2));
+      from_points(V(-kTiny, 0, -0.5), A, B, V(0, 4, -2), V(-kTiny, 2, 0.5), A, B, V(0, 4, 2));
   expect_conservative_only_within_tolerance(Kind::vertex_face, q);
   check_vf(q, kMiss);
 }
 
 TEST(ExactMultipleRoots, DoubleRootEdgesCrossingAndApart) {
-  check_ee(make(A, V(0, 4, -2), B, V(-4, 0, -0.5), A, V(0, 4, 2), B, V(-4, 2, 0.5)), 0.5L);
-  check_ee(make(V(0, 2, -1), V(0, 4, -2), B, V(-4, 0, -0.5), V(0, 2, 1), V(0, 4, 2), B,
+  check_ee(from_points(A, V(0, 4, -2), B, V(-4, 0, -0.5), A, V(0, 4, 2), B, V(-4, 2, 0.5)), 0.5L);
+  check_ee(from_points(V(0, 2, -1), V(0, 4, -2), B, V(-4, 0, -0.5), V(0, 2, 1), V(0, 4, 2), B,
                 V(-4, 2, 0.5)),
            kMiss);
 }
@@ -359,16 +354,16 @@ TEST(ExactMultipleRoots, TripleRootsLocatedToTheAskedWidth) {
   // d = (2t - 1)^3 (see test_degenerate.cpp): conservative mode may stop up
   // to 1e-3 early here; exact mode must be within 1e-12.
   const Vec3 origin = V(0, 0, 0);
-  check_vf(make(V(-0.25, 0, -0.75), origin, V(-1, 1, 0), V(0, -1, 1), V(0.25, 0.5, 1.25), origin,
+  check_vf(from_points(V(-0.25, 0, -0.75), origin, V(-1, 1, 0), V(0, -1, 1), V(0.25, 0.5, 1.25), origin,
                 V(1, 1, 0), V(0, 1, 1)),
            0.5L);
-  check_vf(make(V(-1, 0, 0), origin, V(-1, 1, 0), V(0, -1, 1), V(1, 2, 2), origin, V(1, 1, 0),
+  check_vf(from_points(V(-1, 0, 0), origin, V(-1, 1, 0), V(0, -1, 1), V(1, 2, 2), origin, V(1, 1, 0),
                 V(0, 1, 1)),
            kMiss);
-  check_ee(make(origin, V(-1, 1, 0), V(0, -1, 1), V(-1, 2, -2), origin, V(1, 1, 0), V(0, 1, 1),
+  check_ee(from_points(origin, V(-1, 1, 0), V(0, -1, 1), V(-1, 2, -2), origin, V(1, 1, 0), V(0, 1, 1),
                 V(1, 0, 0)),
            0.5L);
-  check_ee(make(origin, V(-1, 1, 0), V(0, -1, 1), V(-3, 4, -2), origin, V(1, 1, 0), V(0, 1, 1),
+  check_ee(from_points(origin, V(-1, 1, 0), V(0, -1, 1), V(-3, 4, -2), origin, V(1, 1, 0), V(0, 1, 1),
                 V(3, 2, 0)),
            kMiss);
 }
@@ -376,47 +371,47 @@ TEST(ExactMultipleRoots, TripleRootsLocatedToTheAskedWidth) {
 // Contact exactly at t = 0 or t = 1.
 
 TEST(ExactStepEnds, ContactAtTimeZeroAndOne) {
-  check_vf(make(V(1, 1, 0), A, B, C, V(1, 1, 1), A, B, C), 0.0L);
-  check_vf(make(V(1, 1, 1), A, B, C, V(1, 1, 0), A, B, C), 1.0L);
-  check_vf(make(V(4, 0, 2), A, B, C, V(4, 0, 0), A, B, C), 1.0L);  // onto corner b
-  check_ee(make(A, B, V(2, -1, 0), V(2, 1, 0), A, B, V(2, -1, 1), V(2, 1, 1)), 0.0L);
-  check_ee(make(A, B, V(2, -1, 1), V(2, 1, 1), A, B, V(2, -1, 0), V(2, 1, 0)), 1.0L);
+  check_vf(from_points(V(1, 1, 0), A, B, C, V(1, 1, 1), A, B, C), 0.0L);
+  check_vf(from_points(V(1, 1, 1), A, B, C, V(1, 1, 0), A, B, C), 1.0L);
+  check_vf(from_points(V(4, 0, 2), A, B, C, V(4, 0, 0), A, B, C), 1.0L);  // onto corner b
+  check_ee(from_points(A, B, V(2, -1, 0), V(2, 1, 0), A, B, V(2, -1, 1), V(2, 1, 1)), 0.0L);
+  check_ee(from_points(A, B, V(2, -1, 1), V(2, 1, 1), A, B, V(2, -1, 0), V(2, 1, 0)), 1.0L);
 }
 
 TEST(ExactStepEnds, StopsATinyGapShortAtTimeOne) {
-  check_vf(make(V(1, 1, 1), A, B, C, V(1, 1, kTiny), A, B, C), kMiss);
-  check_ee(make(A, B, V(2, -1, 1), V(2, 1, 1), A, B, V(2, -1, kTiny), V(2, 1, kTiny)), kMiss);
+  check_vf(from_points(V(1, 1, 1), A, B, C, V(1, 1, kTiny), A, B, C), kMiss);
+  check_ee(from_points(A, B, V(2, -1, 1), V(2, 1, 1), A, B, V(2, -1, kTiny), V(2, 1, kTiny)), kMiss);
 }
 
 TEST(ExactStepEnds, StartsATinyGapAwayAndLeaves) {
-  check_vf(make(V(1, 1, kTiny), A, B, C, V(1, 1, 1), A, B, C), kMiss);
+  check_vf(from_points(V(1, 1, kTiny), A, B, C, V(1, 1, 1), A, B, C), kMiss);
 }
 
 // Vertices shared between the two primitives.
 
 TEST(ExactSharedVertices, EdgesShareAnEndpointThroughout) {
-  check_ee(make(A, B, A, V(0, 4, 1), A, V(4, 1, 0), A, V(1, 4, 0)), 0.0L);
+  check_ee(from_points(A, B, A, V(0, 4, 1), A, V(4, 1, 0), A, V(1, 4, 0)), 0.0L);
 }
 
 TEST(ExactSharedVertices, VertexIsATriangleCorner) {
-  check_vf(make(A, A, B, C, V(1, 1, 1), V(1, 1, 1), V(5, 1, 0), V(0, 4, 3)), 0.0L);
+  check_vf(from_points(A, A, B, C, V(1, 1, 1), V(1, 1, 1), V(5, 1, 0), V(0, 4, 3)), 0.0L);
 }
 
 TEST(ExactSharedVertices, EndpointRunsIntoTheOtherEdgesEndpointAtTheEnd) {
-  check_ee(make(A, B, V(2, 2, 2), V(2, 4, 2), A, B, A, V(2, 4, 2)), 1.0L);
+  check_ee(from_points(A, B, V(2, 2, 2), V(2, 4, 2), A, B, A, V(2, 4, 2)), 1.0L);
 }
 
 TEST(ExactSharedVertices, AdjacentTrianglesEdgeAgainstTheirSharedEdge) {
   // Edges (0,0,0)-(4,0,0) of two triangles that share it, moving together.
-  check_ee(make(A, B, B, A, V(1, 1, 1), V(5, 1, 1), V(5, 1, 1), V(1, 1, 1)), 0.0L);
+  check_ee(from_points(A, B, B, A, V(1, 1, 1), V(5, 1, 1), V(5, 1, 1), V(1, 1, 1)), 0.0L);
 }
 
 // Coincident points and extreme magnitudes.
 
 TEST(ExactMagnitudes, EverythingOnePointTouches) {
   const Vec3 point = V(1, 1, 1);
-  check_vf(make_static(point, point, point, point), 0.0L);
-  check_ee(make(point, point, point, point, V(3, 2, 1), V(3, 2, 1), V(3, 2, 1), V(3, 2, 1)), 0.0L);
+  check_vf(at_rest(point, point, point, point), 0.0L);
+  check_ee(from_points(point, point, point, point, V(3, 2, 1), V(3, 2, 1), V(3, 2, 1), V(3, 2, 1)), 0.0L);
 }
 
 TEST(ExactMagnitudes, DifferenceBelowWhatScalingKeeps) {
@@ -425,17 +420,17 @@ TEST(ExactMagnitudes, DifferenceBelowWhatScalingKeeps) {
   // does not.
   const double far = 0x1p1000, gap = 0x1p-1000;
   const Vec3 corner = V(far, 0, 0);
-  check_vf(make_static(V(far, gap, 0), corner, corner, corner), kMiss);
-  check_vf(make_static(corner, corner, corner, corner), 0.0L);
+  check_vf(at_rest(V(far, gap, 0), corner, corner, corner), kMiss);
+  check_vf(at_rest(corner, corner, corner, corner), 0.0L);
 }
 
 TEST(ExactMagnitudes, HugeAndTinyScalesGiveTheSameAnswer) {
   for (int exponent : {-1000, -500, 0, 500, 960}) {
     const double s = std::ldexp(1.0, exponent);
     SCOPED_TRACE(exponent);
-    check_vf(make(V(1, 1, 1) * s, A * s, B * s, C * s, V(1, 1, -2) * s, A * s, B * s, C * s),
+    check_vf(from_points(V(1, 1, 1) * s, A * s, B * s, C * s, V(1, 1, -2) * s, A * s, B * s, C * s),
              1.0L / 3);
-    check_vf(make(V(-2, 4 + kTiny, 0) * s, A * s, B * s, C * s, V(2, 4 + kTiny, 0) * s, A * s,
+    check_vf(from_points(V(-2, 4 + kTiny, 0) * s, A * s, B * s, C * s, V(2, 4 + kTiny, 0) * s, A * s,
                   B * s, C * s),
              kMiss);
   }
@@ -445,16 +440,16 @@ TEST(ExactMagnitudes, HugeAndTinyScalesGiveTheSameAnswer) {
 
 TEST(ExactToi, ThirdFifthAndThreeSevenths) {
   // p(t) = (1, 1, z0 + t (z1 - z0)) reaches the static face at -z0 / (z1 - z0).
-  check_vf(make(V(1, 1, 1), A, B, C, V(1, 1, -2), A, B, C), 1.0L / 3);
-  check_vf(make(V(1, 1, 1), A, B, C, V(1, 1, -4), A, B, C), 1.0L / 5);
-  check_vf(make(V(1, 1, 3), A, B, C, V(1, 1, -4), A, B, C), 3.0L / 7);
+  check_vf(from_points(V(1, 1, 1), A, B, C, V(1, 1, -2), A, B, C), 1.0L / 3);
+  check_vf(from_points(V(1, 1, 1), A, B, C, V(1, 1, -4), A, B, C), 1.0L / 5);
+  check_vf(from_points(V(1, 1, 3), A, B, C, V(1, 1, -4), A, B, C), 3.0L / 7);
 }
 
 TEST(ExactToi, IrrationalOneOverSquareRootOfTwo) {
   // Plane z = (t - 1/2) y through a, b and c(t) = (0, 4, 4t - 2); p(t) =
   // (1, 2 - 2t, -2 + 3t): pz - (t - 1/2) py = 2 (t^2 - 1/2), zero at
   // t = 1/sqrt(2), where p = (1, 0.59, .) projects inside the triangle.
-  check_vf(make(V(1, 2, -2), A, B, V(0, 4, -2), V(1, 0, 1), A, B, V(0, 4, 2)),
+  check_vf(from_points(V(1, 2, -2), A, B, V(0, 4, -2), V(1, 0, 1), A, B, V(0, 4, 2)),
            0.70710678118654752440084436210485L);
 }
 
@@ -467,7 +462,7 @@ TEST(ExactToi, SlowMotionNeedsTheExactRootOfACertainContact) {
   const double h = 0x1p-16;
   const Vec3 a = V(0, 0, 0), b = V(4, 1, 2), c = V(1, 4, 3), q_point = V(1.25, 1.25, 1.25);
   const Vec3 normal = V(-1, -2, 3);
-  const Query q = make(q_point + h * normal, a, b, c, q_point - 2 * h * normal, a, b, c);
+  const Query q = from_points(q_point + h * normal, a, b, c, q_point - 2 * h * normal, a, b, c);
   check_vf(q, 1.0L / 3);
   const reference::Evaluation e = reference::evaluate_query(Kind::vertex_face, q, exact_options(), {});
   EXPECT_EQ(e.exact_stage, reference::ExactStage::toi);
@@ -485,7 +480,7 @@ TEST(ExactToi, SlowMotionNeedsTheExactRootOfACertainContact) {
 }
 
 TEST(ExactToi, CleanCrossingNeedsNoExactArithmetic) {
-  const Query q = make(V(1, 1, 1), A, B, C, V(1, 1, -2), A, B, C);
+  const Query q = from_points(V(1, 1, 1), A, B, C, V(1, 1, -2), A, B, C);
   const reference::Evaluation e = reference::evaluate_query(Kind::vertex_face, q, exact_options(), {});
   EXPECT_TRUE(e.result.hit);
   EXPECT_EQ(e.exact_stage, reference::ExactStage::none);
@@ -551,8 +546,8 @@ TEST(ExactAgainstCertified, RandomGridQueriesAgree) {
 TEST(ExactCounters, BatchCountsEscalationsAndTimesQueriesOnlyWhenAsked) {
   const double x = 4 + kTiny;
   const std::vector<Query> queries = {
-      make(A, B, V(2, -1, 1), V(2, 1, 1), A, B, V(2, -1, -2), V(2, 1, -2)),  // clean, at 1/3
-      make(A, B, V(x, 0, 1), V(6, 0, 1), A, B, V(x, 0, -1), V(6, 0, -1)),    // near miss
+      from_points(A, B, V(2, -1, 1), V(2, 1, 1), A, B, V(2, -1, -2), V(2, 1, -2)),  // clean, at 1/3
+      from_points(A, B, V(x, 0, 1), V(6, 0, 1), A, B, V(x, 0, -1), V(6, 0, -1)),    // near miss
   };
   const auto expect_counted = [&](const Options& options, const lab::Settings& stages, const std::string& what) {
     const BatchResult batch = lab::batch_ccd(Kind::edge_edge, queries, options, stages);
@@ -611,15 +606,6 @@ struct LabeledQuery {
   bool truth;
 };
 
-Query gather(const Scene& scene, const std::array<int, 4>& vertices) {
-  Query query;
-  for (int k = 0; k < 4; ++k) {
-    query.points[k] = scene.positions_t0.row(vertices[k]).transpose();
-    query.points[k + 4] = scene.positions_t1.row(vertices[k]).transpose();
-  }
-  return query;
-}
-
 // Every sample query, and every stride-th candidate of each scene.
 std::vector<LabeledQuery> shared_queries(std::size_t scene_stride) {
   std::vector<LabeledQuery> all;
@@ -632,17 +618,13 @@ std::vector<LabeledQuery> shared_queries(std::size_t scene_stride) {
   }
   for (const std::filesystem::path& directory : testing::shared_scene_directories()) {
     const Scene scene = read_scene(directory);
+    const MeshView mesh{scene.positions_t0, scene.positions_t1, scene.faces};
     const auto& vf = scene.candidates.vertex_face;
-    for (std::size_t i = 0; i < vf.size(); i += scene_stride) {
-      const auto [vertex, face] = vf[i];
-      all.push_back({Kind::vertex_face,
-                     gather(scene, {vertex, scene.faces(face, 0), scene.faces(face, 1),
-                                    scene.faces(face, 2)}),
-                     scene.vertex_face_truth.value().at(i)});
-    }
+    for (std::size_t i = 0; i < vf.size(); i += scene_stride)
+      all.push_back({Kind::vertex_face, vertex_face_query(mesh, vf[i]), scene.vertex_face_truth.value().at(i)});
     const auto& ee = scene.candidates.edge_edge;
     for (std::size_t i = 0; i < ee.size(); i += scene_stride)
-      all.push_back({Kind::edge_edge, gather(scene, ee[i]), scene.edge_edge_truth.value().at(i)});
+      all.push_back({Kind::edge_edge, edge_edge_query(mesh, ee[i]), scene.edge_edge_truth.value().at(i)});
   }
   return all;
 }
@@ -741,40 +723,23 @@ using Transform = Query (*)(Kind, const Query&);
 
 template <int Exponent>
 Query scaled(Kind, const Query& q) {
-  Query out = q;
-  for (Vec3& p : out.points) p *= std::ldexp(1.0, Exponent);
-  return out;
+  return testing::scaled(q, Exponent);
 }
 
 template <int X, int Y, int Z>
 Query axes_permuted(Kind, const Query& q) {
-  Query out = q;
-  for (Vec3& p : out.points) p = Vec3(p[X], p[Y], p[Z]);
-  return out;
+  return testing::axes_permuted(q, {X, Y, Z});
 }
 
 template <int SX, int SY, int SZ>
 Query signs_flipped(Kind, const Query& q) {
-  Query out = q;
-  for (Vec3& p : out.points) p = Vec3(SX * p[0], SY * p[1], SZ * p[2]);
-  return out;
+  return testing::axes_flipped(q, (SX < 0 ? 1 : 0) | (SY < 0 ? 2 : 0) | (SZ < 0 ? 4 : 0));
 }
 
-Query time_reversed(Kind, const Query& q) {
-  Query out = q;
-  for (int k = 0; k < 4; ++k) std::swap(out.points[k], out.points[k + 4]);
-  return out;
-}
+Query time_reversed(Kind, const Query& q) { return testing::time_reversed(q); }
 
-// The same four points listed in another equivalent order (both times).
-Query reordered(const Query& q, const std::array<int, 4>& order) {
-  Query out;
-  for (int k = 0; k < 4; ++k) {
-    out.points[k] = q.points[order[k]];
-    out.points[k + 4] = q.points[order[k] + 4];
-  }
-  return out;
-}
+using testing::reordered;
+
 // VF (p, a, b, c): the triangle rotated, or mirrored. EE (ea0, ea1, eb0,
 // eb1): the edges swapped, or one reversed.
 Query first_reorder(Kind kind, const Query& q) {

@@ -18,6 +18,7 @@
 #include "exact/expansion.hpp"
 #include "exact/expansion_stage.hpp"
 #include "exact/first_root.hpp"
+#include "query_builders.hpp"
 
 namespace batchccd {
 namespace {
@@ -160,10 +161,7 @@ Query jittered(Query query, std::mt19937_64& random) {
   return query;
 }
 
-Query scaled(Query query, int exponent) {
-  for (Vec3& point : query.points) point = point * std::ldexp(1.0, exponent);
-  return query;
-}
+using testing::scaled;
 
 TEST(ExpansionStage, DecidesAsIntegersOnRandomGridQueries) {
   std::mt19937_64 random(3);

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "batchccd/candidates.hpp"
 #include "batchccd/io.hpp"
 #include "shared_data.hpp"
 #include "temporary_directory.hpp"
@@ -882,31 +883,19 @@ TEST(SharedDataTest, ArmadilloSceneCounts) {
   EXPECT_EQ(std::count(scene.edge_edge_truth->begin(), scene.edge_edge_truth->end(), true), 19308);
 }
 
-// A query assembled from the mesh, in the order of docs/design.md §9.
-Query assembled_query(const Scene& scene, const std::array<int, 4>& vertex_ids) {
-  Query query;
-  for (int i = 0; i < 4; ++i) {
-    query.points[static_cast<std::size_t>(i)] = scene.positions_t0.row(vertex_ids[static_cast<std::size_t>(i)]);
-    query.points[static_cast<std::size_t>(i) + 4] = scene.positions_t1.row(vertex_ids[static_cast<std::size_t>(i)]);
-  }
-  return query;
-}
-
 // The flat query files of a scene hold exactly the points of its mesh;
 // counts in `compared` those it compared (a scene may have either or both).
 void expect_queries_match_mesh(const fs::path& directory, int& compared) {
   const Scene scene = read_scene(directory);
+  const MeshView mesh{scene.positions_t0, scene.positions_t1, scene.faces};
   if (fs::exists(directory / "queries_vf.csv")) {
     ++compared;
     const QueryFile file = read_query_csv(directory / "queries_vf.csv", Kind::vertex_face);
     ASSERT_EQ(file.queries.size(), scene.candidates.vertex_face.size());
     EXPECT_EQ(file.truth, scene.vertex_face_truth);
-    for (std::size_t i = 0; i < file.queries.size(); ++i) {
-      const auto [vertex, face] = scene.candidates.vertex_face[i];
-      const Query expected =
-          assembled_query(scene, {vertex, scene.faces(face, 0), scene.faces(face, 1), scene.faces(face, 2)});
-      ASSERT_EQ(file.queries[i].points, expected.points) << directory << " vf " << i;
-    }
+    for (std::size_t i = 0; i < file.queries.size(); ++i)
+      ASSERT_EQ(file.queries[i].points, vertex_face_query(mesh, scene.candidates.vertex_face[i]).points)
+          << directory << " vf " << i;
   }
   if (fs::exists(directory / "queries_ee.csv")) {
     ++compared;
@@ -914,7 +903,7 @@ void expect_queries_match_mesh(const fs::path& directory, int& compared) {
     ASSERT_EQ(file.queries.size(), scene.candidates.edge_edge.size());
     EXPECT_EQ(file.truth, scene.edge_edge_truth);
     for (std::size_t i = 0; i < file.queries.size(); ++i)
-      ASSERT_EQ(file.queries[i].points, assembled_query(scene, scene.candidates.edge_edge[i]).points)
+      ASSERT_EQ(file.queries[i].points, edge_edge_query(mesh, scene.candidates.edge_edge[i]).points)
           << directory << " ee " << i;
   }
 }

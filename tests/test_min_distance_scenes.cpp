@@ -151,6 +151,29 @@ void check_broad_phase_sample(const std::string& name) {
   }
 }
 
+// The labeller's root bounds where the square falls below the normal
+// doubles (fuzz_query_kernels found sqrt_above running for ever, nudging up
+// from a root estimated from the square's double: 0 where the square was
+// below 2^-1074, a few bits of it where it was subnormal).
+TEST(ExactDistanceLabels, RootBoundsOfSubnormalLengths) {
+  const double least = std::numeric_limits<double>::denorm_min();
+  for (const double length : {least, 3 * least, 0x1p-1060, 0x1p-1022, 0x1.4p-537, 0x1.6a09e667f3bcdp-537,
+                              0x1.fffffffffffffp-512, 0x1p-540, 1.5}) {
+    SCOPED_TRACE(length);
+    const testing::Rational square = testing::Rational(length) * testing::Rational(length);
+    const double above = testing::sqrt_above(square), below = testing::sqrt_below(square);
+    EXPECT_GE(testing::Rational(above) * testing::Rational(above), square);
+    EXPECT_LE(above, std::max(length * (1 + 0x1p-30), std::nextafter(length, 1.0) + 2 * least));
+    EXPECT_LE(testing::Rational(below) * testing::Rational(below), square);
+  }
+  // A vertex moving by the least subnormal against a still triangle.
+  const Query query =
+      make_query(Kind::vertex_face, std::vector<Vec3>{Vec3(0, 0, 1), Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY()},
+                 std::vector<Vec3>{Vec3(least, 0, 1), Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY()});
+  EXPECT_EQ(testing::lipschitz_bound(Kind::vertex_face, query), least);
+  EXPECT_EQ(label(Kind::vertex_face, query, 0.5).label, Label::miss);
+}
+
 TEST(SharedSceneMinDistance, ArmadilloRollers326) { check_scene("armadillo-rollers-326"); }
 TEST(SharedSceneMinDistance, ClothFunnel227) { check_scene("cloth-funnel-227"); }
 TEST(SharedSceneMinDistance, RodTwist3036) { check_scene("rod-twist-3036"); }

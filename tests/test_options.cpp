@@ -49,15 +49,6 @@ Query vertex_passing_the_hypotenuse(double gap) {
 // Options::tolerance governs.
 const lab::Settings kSearchAlone{.swept_box_filter = false, .planar_path = false};
 
-// The widest extent of the query's points along an axis: no definition of
-// the query's size the promise uses is larger.
-double extent(const Query& query) {
-  double widest = 0;
-  for (const Vec3& a : query.points)
-    for (const Vec3& b : query.points) widest = std::max(widest, (a - b).cwiseAbs().maxCoeff());
-  return widest;
-}
-
 // 2^-45 past the hypotenuse: within any of these tolerances, reported as
 // a contact (Options::tolerance) -- and then, the promise of conservative
 // mode, with the primitives within tolerance of each other at the TOI.
@@ -69,7 +60,9 @@ TEST(Tolerance, ANearMissIsReportedOnlyWithinIt) {
     options.exact_stage_iterations = options.max_iterations;  // no exact stage: the search's own answer
     const QueryResult result = query_ccd(Kind::vertex_face, near_miss, options);
     ASSERT_TRUE(result.hit) << "tolerance " << tolerance;
-    const Rational reach = 4 * tolerance * extent(near_miss);
+    // The widest extent of the query's points along an axis: no definition
+    // of the query's size the promise uses is larger.
+    const Rational reach = 4 * tolerance * testing::query_size(near_miss);
     EXPECT_LE(testing::squared_distance_at(Kind::vertex_face, near_miss, result.toi), reach * reach)
         << "tolerance " << tolerance << ", toi " << result.toi;
   }

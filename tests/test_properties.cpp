@@ -26,6 +26,8 @@
 
 #include "batchccd/ccd.hpp"
 #include "batchccd/lab.hpp"
+#include "exact_distance.hpp"
+#include "query_builders.hpp"
 
 namespace {
 
@@ -54,6 +56,7 @@ bool coin(Rng& rng, double probability = 0.5) {
 }
 
 namespace lab = batchccd::lab;
+namespace batchccd_testing = batchccd::testing;  // exact_distance.hpp, query_builders.hpp
 
 QueryResult run(Kind kind, const Query& query, const lab::Method& method = lab::kConservative) {
   return lab::query_ccd(kind, query, method.applied_to({}), method.settings());
@@ -69,13 +72,6 @@ std::string describe(Kind kind, const Query& query) {
   }
   out << "}";
   return out.str();
-}
-
-Query scaled(const Query& query, int exponent) {
-  Query result = query;
-  for (Vec3& x : result.points)
-    for (int axis = 0; axis < 3; ++axis) x[axis] = std::ldexp(x[axis], exponent);
-  return result;
 }
 
 // ---------------------------------------------------------------------------
@@ -244,96 +240,27 @@ Contact random_contact(Rng& rng, Kind kind, const PointMaker& point,
 }
 
 // ---------------------------------------------------------------------------
-// Distances, to certify that generated misses really are clear misses.
+// Clear misses, certified exactly.
 
-double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double s = length2 > 0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (p - (a + s * ab)).norm();
-}
-
-// Never more than the true distance (up to rounding): the minimum over the
-// endpoint pairs and, when the closest points of the two lines lie (nearly)
-// inside both segments, the distance of the lines.
-double segment_segment_distance(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1) {
-  double distance = std::min({point_segment_distance(a0, b0, b1), point_segment_distance(a1, b0, b1),
-                              point_segment_distance(b0, a0, a1), point_segment_distance(b1, a0, a1)});
-  const Vec3 da = a1 - a0, db = b1 - b0, r = b0 - a0;
-  const Vec3 n = da.cross(db);
-  const double n2 = n.squaredNorm();
-  if (n2 > 0) {
-    const double s = r.cross(db).dot(n) / n2, u = r.cross(da).dot(n) / n2;
-    constexpr double slack = 1e-6;
-    if (s >= -slack && s <= 1 + slack && u >= -slack && u <= 1 + slack)
-      distance = std::min(distance, std::fabs(r.dot(n)) / std::sqrt(n2));
-  }
-  return distance;
-}
-
-double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  double distance = std::min({point_segment_distance(p, a, b), point_segment_distance(p, b, c),
-                              point_segment_distance(p, c, a)});
-  const Vec3 n = (b - a).cross(c - a);
-  const double n2 = n.squaredNorm();
-  if (n2 > 0) {
-    const double slack = -1e-6 * n2;
-    if ((b - p).cross(c - p).dot(n) >= slack && (c - p).cross(a - p).dot(n) >= slack &&
-        (a - p).cross(b - p).dot(n) >= slack)
-      distance = std::min(distance, std::fabs((p - a).dot(n)) / std::sqrt(n2));
-  }
-  return distance;
-}
-
-double distance_at(Kind kind, const Query& q, double t) {
-  std::array<Vec3, 4> x;
-  for (int i = 0; i < 4; ++i) x[i] = (1 - t) * q.points[i] + t * q.points[i + 4];
-  return kind == Kind::vertex_face ? point_triangle_distance(x[0], x[1], x[2], x[3])
-                                   : segment_segment_distance(x[0], x[1], x[2], x[3]);
-}
-
-// Largest extent of the query along any axis: at least its size under any
-// equivalent description.
-double diameter(const Query& q) {
-  double largest = 0;
-  for (int axis = 0; axis < 3; ++axis) {
-    double low = kInfinity, high = -kInfinity;
-    for (const Vec3& x : q.points) {
-      low = std::min(low, x[axis]);
-      high = std::max(high, x[axis]);
-    }
-    largest = std::max(largest, high - low);
-  }
-  return largest;
-}
-
-// True when the primitives certainly stay more than `gap` apart over [0, 1]:
-// the distance changes with t at most as fast as the points move (Lipschitz
-// constant `speed`), so bisect time until every interval is cleared.
+// Whether the primitives stay more than `gap` apart over [0, 1], proven by
+// the exact labels of exact_distance.hpp (rational distances, a certified
+// Lipschitz bound). Those spend their GMP samples only on queries the
+// double-precision distance already keeps twice `gap` apart (a bisection on
+// the same Lipschitz cones), where a wide margin settles the proof in a few
+// samples: a query nearer than that is another try, never a test case.
 bool certainly_apart(Kind kind, const Query& q, double gap) {
-  double speed = 0;
-  if (kind == Kind::vertex_face) {
-    double triangle = 0;
-    for (int i = 1; i < 4; ++i) triangle = std::max(triangle, (q.points[i + 4] - q.points[i]).norm());
-    speed = (q.points[4] - q.points[0]).norm() + triangle;
-  } else {
-    const double a = std::max((q.points[4] - q.points[0]).norm(), (q.points[5] - q.points[1]).norm());
-    const double b = std::max((q.points[6] - q.points[2]).norm(), (q.points[7] - q.points[3]).norm());
-    speed = a + b;
-  }
+  const double speed = batchccd_testing::lipschitz_bound(kind, q);
   std::vector<std::array<double, 2>> stack = {{0.0, 1.0}};
-  int evaluations = 0;
-  while (!stack.empty()) {
+  for (int evaluations = 0; !stack.empty(); ++evaluations) {
     const auto [low, high] = stack.back();
     stack.pop_back();
-    if (++evaluations > 20000) return false;
     const double middle = 0.5 * (low + high);
-    if (distance_at(kind, q, middle) - speed * 0.5 * (high - low) > gap) continue;
-    if (high - low < 1e-7) return false;
+    if (batchccd_testing::distance_in_double(kind, q, middle) - speed * 0.5 * (high - low) > 2 * gap) continue;
+    if (evaluations > 20000 || high - low < 1e-7) return false;
     stack.push_back({low, middle});
     stack.push_back({middle, high});
   }
-  return true;
+  return batchccd_testing::label(kind, q, gap).label == batchccd_testing::Label::miss;
 }
 
 // The points shifted to turn a contact into a miss: the vertex (VF), edge b (EE).
@@ -341,7 +268,7 @@ std::vector<int> moving_points(Kind kind) {
   return kind == Kind::vertex_face ? std::vector<int>{0, 4} : std::vector<int>{2, 3, 6, 7};
 }
 
-// A query whose primitives stay more than 1e-3 of its diameter apart: a
+// A query whose primitives stay more than 1e-3 of its size apart: a
 // contact with the vertex (VF) or edge b (EE) shifted off it, when that
 // clears it; otherwise another try.
 Query random_clear_miss(Rng& rng, Kind kind, const PointMaker& point) {
@@ -352,7 +279,7 @@ Query random_clear_miss(Rng& rng, Kind kind, const PointMaker& point) {
                point.planar ? 0.0 : uniform_int(rng, -4, 4) * scale);
     if (point.kind == PointKind::real) shift *= 0.25;
     for (int index : moving_points(kind)) q.points[index] += shift;
-    if (certainly_apart(kind, q, 1e-3 * diameter(q))) return q;
+    if (certainly_apart(kind, q, 1e-3 * batchccd_testing::query_size(q))) return q;
   }
 }
 
@@ -365,68 +292,31 @@ struct Variant {
   bool time_reversed = false;
 };
 
-Query permute_axes(const Query& q, const std::array<int, 3>& order) {
-  Query result = q;
-  for (int i = 0; i < 8; ++i)
-    for (int axis = 0; axis < 3; ++axis) result.points[i][axis] = q.points[i][order[axis]];
-  return result;
-}
-
-Query flip_axes(const Query& q, int mask) {
-  Query result = q;
-  for (Vec3& x : result.points)
-    for (int axis = 0; axis < 3; ++axis)
-      if (mask & (1 << axis)) x[axis] = -x[axis];
-  return result;
-}
-
-Query translate(const Query& q, const Vec3& offset) {
-  Query result = q;
-  for (Vec3& x : result.points) x += offset;
-  return result;
-}
-
-Query reverse_time(const Query& q) {
-  Query result = q;
-  for (int i = 0; i < 4; ++i) std::swap(result.points[i], result.points[i + 4]);
-  return result;
-}
-
-// New point i (at t0; t1 alike) is old point order[i].
-Query reorder_points(const Query& q, const std::array<int, 4>& order) {
-  Query result;
-  for (int i = 0; i < 4; ++i) {
-    result.points[i] = q.points[order[i]];
-    result.points[i + 4] = q.points[order[i] + 4];
-  }
-  return result;
-}
-
 std::vector<Variant> equivalent_variants(Rng& rng, Kind kind, const Query& q, bool exact) {
   std::vector<Variant> variants;
   std::array<int, 3> order = {0, 1, 2};
   while (std::next_permutation(order.begin(), order.end()))
     variants.push_back({"axes permuted " + std::to_string(order[0]) + std::to_string(order[1]) +
                             std::to_string(order[2]),
-                        permute_axes(q, order)});
+                        batchccd_testing::axes_permuted(q, order)});
   for (int mask = 1; mask < 8; ++mask)
-    variants.push_back({"axes flipped, mask " + std::to_string(mask), flip_axes(q, mask)});
+    variants.push_back({"axes flipped, mask " + std::to_string(mask), batchccd_testing::axes_flipped(q, mask)});
   if (exact) {
     // Integer offsets keep grid coordinates exact (they carry few bits).
     for (int k = 0; k < 3; ++k) {
       const int range = k == 0 ? 4 : k == 1 ? 1000 : 1 << 20;
       const Vec3 offset(uniform_int(rng, -range, range), uniform_int(rng, -range, range),
                         uniform_int(rng, -range, range));
-      variants.push_back({"translated by range " + std::to_string(range), translate(q, offset)});
+      variants.push_back({"translated by range " + std::to_string(range), batchccd_testing::translated(q, offset)});
     }
   }
-  variants.push_back({"time reversed", reverse_time(q), true});
+  variants.push_back({"time reversed", batchccd_testing::time_reversed(q), true});
   if (kind == Kind::vertex_face) {
     std::array<int, 3> corners = {1, 2, 3};
     while (std::next_permutation(corners.begin(), corners.end()))
       variants.push_back({"triangle reordered " + std::to_string(corners[0]) +
                               std::to_string(corners[1]) + std::to_string(corners[2]),
-                          reorder_points(q, {0, corners[0], corners[1], corners[2]})});
+                          batchccd_testing::reordered(q, {0, corners[0], corners[1], corners[2]})});
   } else {
     const std::array<std::array<int, 4>, 7> orders = {{{1, 0, 2, 3},
                                                        {0, 1, 3, 2},
@@ -438,28 +328,29 @@ std::vector<Variant> equivalent_variants(Rng& rng, Kind kind, const Query& q, bo
     for (const auto& o : orders)
       variants.push_back({"endpoints reordered " + std::to_string(o[0]) + std::to_string(o[1]) +
                               std::to_string(o[2]) + std::to_string(o[3]),
-                          reorder_points(q, o)});
+                          batchccd_testing::reordered(q, o)});
   }
   // A few compositions of everything at once.
   for (int k = 0; k < 2; ++k) {
     std::array<int, 3> axes = {0, 1, 2};
     std::shuffle(axes.begin(), axes.end(), rng);
-    Query composed = flip_axes(permute_axes(q, axes), uniform_int(rng, 0, 7));
-    if (exact) composed = translate(composed, Vec3(uniform_int(rng, -64, 64), uniform_int(rng, -64, 64),
-                                                   uniform_int(rng, -64, 64)));
+    Query composed = batchccd_testing::axes_flipped(batchccd_testing::axes_permuted(q, axes), uniform_int(rng, 0, 7));
+    if (exact)
+      composed = batchccd_testing::translated(
+          composed, Vec3(uniform_int(rng, -64, 64), uniform_int(rng, -64, 64), uniform_int(rng, -64, 64)));
     if (kind == Kind::vertex_face) {
       std::array<int, 4> corners = {0, 1, 2, 3};
       std::shuffle(corners.begin() + 1, corners.end(), rng);
-      composed = reorder_points(composed, corners);
+      composed = batchccd_testing::reordered(composed, corners);
     } else {
       std::array<int, 4> ends = {0, 1, 2, 3};
       if (coin(rng)) std::swap(ends[0], ends[1]);
       if (coin(rng)) std::swap(ends[2], ends[3]);
       if (coin(rng)) ends = {ends[2], ends[3], ends[0], ends[1]};
-      composed = reorder_points(composed, ends);
+      composed = batchccd_testing::reordered(composed, ends);
     }
     const bool reversed = coin(rng);
-    if (reversed) composed = reverse_time(composed);
+    if (reversed) composed = batchccd_testing::time_reversed(composed);
     variants.push_back({"composed " + std::to_string(k), composed, reversed});
   }
   return variants;
@@ -482,7 +373,7 @@ Query random_scaling_query(Rng& rng, Kind kind, int family) {
     case 1: {
       Query q = random_contact(rng, kind, point, kFewSegments).query;
       const Vec3 direction(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
-      const Vec3 shift = direction * std::pow(10.0, -uniform(rng, 1, 12)) * diameter(q);
+      const Vec3 shift = direction * std::pow(10.0, -uniform(rng, 1, 12)) * batchccd_testing::query_size(q);
       for (int index : moving_points(kind)) q.points[index] += shift;
       return q;
     }
@@ -513,7 +404,7 @@ void check_scaling(Kind kind, std::uint64_t seed) {
       const QueryResult base = run(kind, q, method);
       hits += base.hit;
       for (int exponent : exponents) {
-        const QueryResult result = run(kind, scaled(q, exponent), method);
+        const QueryResult result = run(kind, batchccd_testing::scaled(q, exponent), method);
         EXPECT_EQ(result.hit, base.hit)
             << lab::to_string(method) << ", scaled by 2^" << exponent << ": "
             << describe(kind, q);
@@ -548,7 +439,7 @@ void check_constructed_contacts(Kind kind, std::uint64_t seed) {
     // Any power of two keeps the contact exact (at worst subnormal with few
     // bits); within double range.
     const int exponent = n % 3 == 0 ? uniform_int(rng, -1000, 1000) : 0;
-    const Query q = scaled(contact.query, exponent);
+    const Query q = batchccd_testing::scaled(contact.query, exponent);
     const QueryResult r = run(kind, q);
     EXPECT_EQ(r.status, Status::ok);
     EXPECT_TRUE(r.hit) << "missed a contact at t = " << contact.time << ": " << describe(kind, q);
@@ -654,7 +545,7 @@ Query random_wild_query(Rng& rng, Kind kind, int family) {
     }
     case 2: {  // a contact scaled to an extreme, with a few coordinates made wild
       const PointMaker point = random_point_maker(rng, false);
-      q = scaled(random_contact(rng, kind, point).query, uniform_int(rng, -1000, 1000));
+      q = batchccd_testing::scaled(random_contact(rng, kind, point).query, uniform_int(rng, -1000, 1000));
       for (int k = uniform_int(rng, 0, 3); k > 0; --k)
         q.points[uniform_int(rng, 0, 7)][uniform_int(rng, 0, 2)] = wild_coordinate(rng);
       break;

@@ -7,15 +7,19 @@
 // at sampled times: a sample within the separation must give a hit no
 // later than it; and to the exact labels of tests/exact_distance.hpp where
 // they settle a query.
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <random>
+#include <span>
 #include <vector>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "batchccd/batch.hpp"
 #include "batchccd/ccd.hpp"
+#include "batchccd/lab.hpp"
 #include "exact_distance.hpp"
 
 namespace batchccd {
@@ -127,6 +131,112 @@ TEST(TurningPrimitives, AgreeWithExactDistancesAtSampledTimes) {
   // Both kinds of answer are well represented.
   EXPECT_GT(sampled_hits, 200);
   EXPECT_GT(labelled_misses, 50);
+}
+
+// A triangle that turns a quarter turn about z while it widens and narrows:
+// a sliver standing in the plane y = 0 at t0 and in x = 0 at t1, wide and
+// flat (z = 0) at t = 1/2. Its normal n(t), quadratic, is `sliver` long at
+// both ends and about `stretch` / 2 at t = 1/2: the middle Bernstein control
+// point (about `stretch` long) bounds it there, the end ones would not. The
+// triangle's corners in the order `order`, the vertex moving from `start`
+// to `end`.
+Query widening_sliver(double sliver, double stretch, const Vec3& start, const Vec3& end,
+                      const std::array<int, 3>& order = {0, 1, 2}) {
+  const std::array<Vec3, 3> corners_start = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 0, -sliver)};
+  const std::array<Vec3, 3> corners_end = {Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(0, 1 + 2 * stretch, sliver)};
+  return make_query(
+      Kind::vertex_face,
+      std::vector<Vec3>{start, corners_start[order[0]], corners_start[order[1]], corners_start[order[2]]},
+      std::vector<Vec3>{end, corners_end[order[0]], corners_end[order[1]], corners_end[order[2]]});
+}
+
+// The filters off: the solver's own plane test and plane step decide.
+lab::Settings solver_alone() {
+  lab::Settings settings;
+  settings.sign_filter = settings.separation_filter = settings.swept_box_filter = false;
+  return settings;
+}
+
+// The vertex still, `height` over the triangle's interior at t = 1/2, far
+// from the sliver planes at the ends: a sign test on the distance to the
+// plane that bounded |n| by its end control points alone culls it.
+TEST(TurningPrimitives, NormalLargestBetweenItsEndsStillBoundsThePlaneDistance) {
+  const double separation = 0x1p-4;
+  const Rational separation2 = Rational(separation) * Rational(separation);
+  int cases = 0;
+  for (const double sliver : {0x1p-10, 0x1p-7})
+    for (const double height : {0x1p-5, 0x1p-8})
+      for (const std::array<int, 3>& order : {std::array{0, 1, 2}, std::array{1, 2, 0}, std::array{2, 1, 0}}) {
+        const Vec3 vertex(0.25, 0.625, height);
+        const Query q = widening_sliver(sliver, 1, vertex, vertex, order);
+        SCOPED_TRACE(::testing::Message() << "sliver " << sliver << ", height " << height << ", order "
+                                          << order[0] << order[1] << order[2]);
+        // The geometry as described: apart by more than the separation at
+        // both ends, `height` apart at t = 1/2.
+        ASSERT_GT(testing::squared_distance_at(Kind::vertex_face, q, 0), separation2);
+        ASSERT_GT(testing::squared_distance_at(Kind::vertex_face, q, 1), separation2);
+        ASSERT_EQ(testing::squared_distance_at(Kind::vertex_face, q, Rational(1, 2)),
+                  Rational(height) * Rational(height));
+        for (const Mode mode : kCertified) {
+          SCOPED_TRACE(to_string(mode));
+          const QueryResult alone = query_ccd(Kind::vertex_face, q, with(mode, separation));
+          EXPECT_TRUE(alone.hit);
+          EXPECT_LE(alone.toi, 0.5);
+          const QueryResult solver = lab::query_ccd(Kind::vertex_face, q, with(mode, separation), solver_alone());
+          EXPECT_TRUE(solver.hit);
+          EXPECT_LE(solver.toi, 0.5);
+          for (const Isa isa : available_isas()) {
+            Options options = with(mode, separation);
+            options.isa = isa;
+            const BatchResult lanes = batch_ccd(Kind::vertex_face, std::span<const Query>(&q, 1), options);
+            EXPECT_TRUE(lanes.results.at(0).hit) << to_string(isa);
+          }
+          ++cases;
+        }
+      }
+  EXPECT_EQ(cases, 24);
+}
+
+// The same triangles, the vertex passing by: over their interior at a
+// height below the separation at t = 1/2, moving at random. Held to the
+// first of 257 sampled times with an exact distance within the separation.
+// Exact mode's solver, bounding |n| by its end control points alone in
+// the plane test over a whole interval, missed some of these.
+TEST(TurningPrimitives, VertexPassingAWideningSliverIsFound) {
+  const double separation = 0x1p-4;
+  const Rational separation2 = Rational(separation) * Rational(separation);
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const auto draw = [&](double low, double high) { return low + (high - low) * unit(random); };
+  constexpr int kQueries = 128;
+  for (int n = 0; n < kQueries; ++n) {
+    const double sliver = std::ldexp(1.0, -static_cast<int>(draw(4, 12)));
+    const double height = separation * draw(0.1, 0.9);
+    const double stretch = draw(1, 5);
+    const double u = draw(0.1, 0.4), v = draw(0.1, 0.4);
+    const double vx = draw(-1, 1), vy = draw(-1, 1), vz = draw(-0.3, 0.3);
+    // The corners' midpoints at t = 1/2: x1 (0, 0, 0), x2 (1/2, 1/2, 0), x3 (1/2, stretch + 1/2, 0).
+    const Vec3 middle = u * Vec3(0.5, 0.5, 0) + v * Vec3(0.5, stretch + 0.5, 0) + Vec3(0, 0, height);
+    const Vec3 velocity(vx, vy, vz);
+    const Query q =
+        widening_sliver(sliver, stretch, on_grid(middle - 0.5 * velocity), on_grid(middle + 0.5 * velocity));
+    int first_sample = -1;
+    for (int k = 0; k <= kSamples && first_sample < 0; ++k)
+      if (testing::squared_distance_at(Kind::vertex_face, q, Rational(k, kSamples)) <= separation2) first_sample = k;
+    SCOPED_TRACE(::testing::Message() << "query " << n << ", sliver " << sliver << ", stretch " << stretch);
+    // Near t = 1/2 the vertex is within the separation (on the grid, within 2^-12 of `height` over it).
+    ASSERT_GE(first_sample, 0);
+    const double witness = static_cast<double>(first_sample) / kSamples;
+    for (const Mode mode : kCertified) {
+      SCOPED_TRACE(to_string(mode));
+      const QueryResult alone = query_ccd(Kind::vertex_face, q, with(mode, separation));
+      EXPECT_TRUE(alone.hit);
+      EXPECT_LE(alone.toi, witness);
+      const QueryResult solver = lab::query_ccd(Kind::vertex_face, q, with(mode, separation), solver_alone());
+      EXPECT_TRUE(solver.hit);
+      EXPECT_LE(solver.toi, witness);
+    }
+  }
 }
 
 }  // namespace
