@@ -490,6 +490,28 @@ std::optional<bool> vanishes_at(const Polynomial& defining, const Polynomial4& p
   return low != high;
 }
 
+// Whether the primitives touch at a time where n = A x B vanishes (parallel
+// edges, a triangle flat on a line or a point: the contact numerators,
+// multiples of n, say nothing there), from the vectors at that time,
+// exactly. A flat triangle is the segment its corners span, which its two
+// sides from x1 cover.
+bool touches_where_flat(Kind kind, const Motion<Value>& v) {
+  const auto is_zero = [](const Vector<Value>& u) { return u[0].is_zero() && u[1].is_zero() && u[2].is_zero(); };
+  const auto on_segment = [&](const Vector<Value>& q, const Vector<Value>& w) {  // q on [0, w]
+    if (is_zero(w)) return is_zero(q);
+    const Value along = dot(q, w);
+    return is_zero(cross(q, w)) && along.sign() >= 0 && (dot(w, w) - along).sign() >= 0;
+  };
+  const Vector<Value>&a = v[0], &b = v[1], &c = v[2];
+  if (kind == Kind::vertex_face) return on_segment(c, a) || on_segment(c, b);
+  // Edge-edge: x1 + s a meets x1 + c + u b for s, u in [0, 1].
+  if (is_zero(a)) return on_segment(Vector<Value>{} - c, b);
+  if (!is_zero(cross(c, a))) return false;  // b, parallel to a, lies off a's line
+  // Along a, edge b spans [c.a, c.a + b.a]; edge a spans [0, a.a].
+  const Value from = dot(c, a), to = from + dot(b, a), length = dot(a, a);
+  return (from.sign() >= 0 || to.sign() >= 0) && ((length - from).sign() >= 0 || (length - to).sign() >= 0);
+}
+
 // Which of a root's contact numerators vanish there (vanishes_at), each
 // asked once: the gcd is the costly step, and the answer does not depend on
 // how narrow the root's interval is. Numerators as polynomials, formed when
@@ -566,8 +588,9 @@ std::optional<bool> touches_at(Kind kind, const Motion<Polynomial4>& motion, con
     positive += *signs[k] > 0;
   }
   if (positive > 0) return true;
-  // Every numerator zero: a contact where n != 0.
-  if (root.exact) return exact_numerators().squared().sign() > 0 ? std::optional(true) : std::nullopt;
+  // Every numerator zero: a contact where n != 0; where n = 0, the flat
+  // configuration decides at an exact time.
+  if (root.exact) return exact_numerators().squared().sign() > 0 || touches_where_flat(kind, *exact_motion);
   if (zeros && zeros->nonzero(ZerosAtRoot::kSquared, root)) return true;
   return std::nullopt;
 }
