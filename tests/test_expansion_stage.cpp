@@ -192,6 +192,18 @@ TEST(ExpansionStage, DecidesAsIntegersOnContactsOnAnEdgeOrACornerAndBesideThem) 
               exact_contacts.decided, kQueries, near_contacts.decided, near_contacts.hits);
 }
 
+// expect_as_integers (tmax 1) on `queries` queries of a family, half of
+// each kind: family(kind, random, trial) makes one.
+template <class Family>
+Tally decide_family(std::uint64_t seed, int queries, Family family) {
+  std::mt19937_64 random(seed);
+  Tally tally;
+  for (int trial = 0; trial < queries / 2; ++trial)
+    for (const Kind kind : {Kind::vertex_face, Kind::edge_edge})
+      expect_as_integers(kind, family(kind, random, trial), 1.0, tally);
+  return tally;
+}
+
 // One axis scaled by 2^exponent: exact, and an affine map, so a contact on
 // an edge stays exactly there while the coordinates spread over binades.
 Query axis_scaled(Query query, int axis, int exponent) {
@@ -203,12 +215,10 @@ TEST(ExpansionStage, DecidesContactsOnAnEdgeWithCoordinatesSpreadOverManyBinades
   // The zero test's remainder sequence outgrows expansions here (terms of
   // the coefficients 2^100 and more apart); it must still settle the
   // contact without leaving the query to the integer stage.
-  std::mt19937_64 random(7);
   constexpr int kQueries = 200;
-  Tally tally;
-  for (int trial = 0; trial < kQueries / 2; ++trial)
-    for (const Kind kind : {Kind::vertex_face, Kind::edge_edge})
-      expect_as_integers(kind, axis_scaled(boundary_contact(kind, random), trial % 3, -50), 1.0, tally);
+  const Tally tally = decide_family(7, kQueries, [](Kind kind, std::mt19937_64& random, int trial) {
+    return axis_scaled(boundary_contact(kind, random), trial % 3, -50);
+  });
   EXPECT_EQ(tally.decided, kQueries);
   EXPECT_EQ(tally.hits, kQueries);
 }
@@ -252,12 +262,9 @@ Query flat_at_start(Kind kind, std::mt19937_64& random) {
 }
 
 TEST(ExpansionStage, DecidesFlatConfigurationsAtAnExactTimeAsIntegers) {
-  std::mt19937_64 random(9);
   constexpr int kQueries = 600;
-  Tally tally;
-  for (int trial = 0; trial < kQueries / 2; ++trial)
-    for (const Kind kind : {Kind::vertex_face, Kind::edge_edge})
-      expect_as_integers(kind, flat_at_start(kind, random), 1.0, tally);
+  const Tally tally =
+      decide_family(9, kQueries, [](Kind kind, std::mt19937_64& random, int) { return flat_at_start(kind, random); });
   // Once flat at 0 was left to the integers; now only what else needs them.
   EXPECT_GT(tally.decided, kQueries * 9 / 10);
   EXPECT_GT(tally.hits, kQueries / 4);
