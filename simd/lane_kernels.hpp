@@ -592,26 +592,25 @@ template <class Arch, class Source>
   using Double = typename Lanes<Arch>::Double;
   using Mask = typename Lanes<Arch>::Mask;
   const ScaledFrame<Arch> frame(source, group);
-  Double largest[3][2];
-  for (int i = 0; i < 3; ++i)
-    for (int tau = 0; tau < 2; ++tau)
-      largest[i][tau] = Magnitudes<Arch>::largest(frame.relative[i][tau]);
   const Double separation =
       settings.within ? frame.scaled_length(lane_separations<Arch>(settings, group)) : Double(0.0);
   FirstCulls culled;
   if (settings.swept_box && settings.within) {
     culled.swept_box = lane_bits<Arch>(
-        frame.evaluable & reference::swept_boxes_apart(source.kind, frame.relative,
-                                                       pairwise<6>(&largest[0][0], Magnitudes<Arch>::larger), true,
-                                                       separation, frame.absolute_error));
+        frame.evaluable &
+        reference::swept_boxes_apart(source.kind, frame.relative, true, separation, frame.absolute_error));
   } else if (settings.swept_box) {
     // Without a separation the direct frame's boxes, for finite input.
     typename Lanes<Arch>::Vector relative[3][2];
     Gather<Arch>::differences(source, group, relative);
-    culled.swept_box = lane_bits<Arch>(
-        frame.evaluable & reference::swept_boxes_apart(source.kind, relative, Double(0.0), false, Double(0.0)));
+    culled.swept_box =
+        lane_bits<Arch>(frame.evaluable & reference::swept_boxes_apart(source.kind, relative, false, Double(0.0)));
   }
   if (!settings.sign) return culled;
+  Double largest[3][2];
+  for (int i = 0; i < 3; ++i)
+    for (int tau = 0; tau < 2; ++tau)
+      largest[i][tau] = Magnitudes<Arch>::largest(frame.relative[i][tau]);
   const Double floor = reference::coefficient_floor(frame.absolute_error);
   const Mask sign = settings.within ? Mask(reference::plane_distance_culls(source.kind, frame.relative, largest, floor,
                                                                           settings.certified, separation))
@@ -674,8 +673,8 @@ template <class Arch, bool within, class Source, class Group>
     culled.swept_box =
         lanes_in_use & lane_bits<Arch>(differences.within_without_nan(reference::kDirectLowest,
                                                                       reference::kDirectHighest) &
-                                       reference::swept_boxes_apart(source.kind, differences.relative,
-                                                                    differences.overall, within, separation));
+                                       reference::swept_boxes_apart(source.kind, differences.relative, within,
+                                                                    separation));
   // On a padded list the boxes alone settle most groups: the sign test
   // only where a lane is left.
   if (settings.sign && culled.swept_box != lanes_in_use) {
@@ -700,30 +699,57 @@ template <class Arch, bool within, class Source, class Group>
   return culled;
 }
 
-// The first pass without a separation on a source known finite (a mesh's
-// packed rows say so): there the boxes hold in the direct frame whatever
-// the magnitudes (reference::run_filters), so those and the frame's window
-// wait for the sign filter, which only groups with a lane left pay.
-template <class Arch, class Source, class Group>
+// The first pass on a source known finite (a mesh's packed rows say so):
+// the boxes on the differences alone, before anything is measured, and
+// the sign filter, its frame's window and the scaled frame only for groups
+// with a lane left. Without a separation the boxes hold in the direct frame
+// whatever the magnitudes (reference::run_filters); with one only in its
+// window, which the boxes' own largest magnitude tells (SweptBoxes::largest:
+// for finite input DirectDifferences::overall, bit for bit).
+template <class Arch, bool within, class Source, class Group>
 [[gnu::flatten]] FirstCulls finite_whole_interval_culled_lanes(const Source& source, const Group& group,
                                                                std::size_t count,
                                                                const reference::FilterSettings& settings) {
   using Double = typename Lanes<Arch>::Double;
+  const auto in_window = [](const Double& largest) {
+    return (largest >= Double(reference::kDirectLowest)) & (largest <= Double(reference::kDirectHighest));
+  };
   typename Lanes<Arch>::Vector relative[3][2];
   Gather<Arch>::differences(source, group, relative);
   const std::uint32_t lanes_in_use = (1u << count) - 1;
   FirstCulls culled;
-  if (settings.swept_box)
-    culled.swept_box = lanes_in_use & lane_bits<Arch>(reference::swept_boxes_apart(source.kind, relative, Double(0.0),
-                                                                                   false, Double(0.0)));
-  if (!settings.sign || culled.swept_box == lanes_in_use) return culled;
+  if (settings.swept_box) {
+    if constexpr (within) {
+      const auto boxes = reference::swept_boxes(source.kind, relative);
+      culled.swept_box = lanes_in_use & lane_bits<Arch>(in_window(boxes.largest) &
+                                                        boxes.apart(true, lane_separations<Arch>(settings, group)));
+    } else {
+      culled.swept_box = lanes_in_use & lane_bits<Arch>(reference::swept_boxes_apart(source.kind, relative, false,
+                                                                                     Double(0.0)));
+    }
+    if (culled.swept_box == lanes_in_use) return culled;
+  }
+  // With a separation the scaled frame's boxes too, for lanes outside the window.
+  if (!settings.sign && !within) return culled;
   const DirectDifferences<Arch> differences(relative, true);
-  const auto direct = differences.within(reference::kDirectLowest, reference::kDirectHighest);
-  const auto test = reference::sign_test(differences.relative, differences.largest,
-                                         Double(reference::direct_coefficient_error().floor), settings.certified);
-  culled.sign = lane_bits<Arch>(direct & test.whole());
+  const auto direct = in_window(differences.overall);
+  if (settings.sign) {
+    const Double floor(reference::direct_coefficient_error().floor);
+    if constexpr (within) {
+      culled.sign = lane_bits<Arch>(direct & reference::plane_distance_culls(
+                                                 source.kind, differences.relative, differences.largest, floor,
+                                                 settings.certified, lane_separations<Arch>(settings, group)));
+    } else {
+      const auto test = reference::sign_test(differences.relative, differences.largest, floor, settings.certified);
+      culled.sign = lane_bits<Arch>(direct & test.whole());
+    }
+  }
   const std::uint32_t scaled_lanes = ~lane_bits<Arch>(direct) & lanes_in_use & ~culled.swept_box;
-  if (scaled_lanes != 0) culled.sign |= scaled_lanes & first_culled_in_scaled_frame<Arch>(source, group, settings).sign;
+  if (scaled_lanes != 0) {
+    const FirstCulls scaled = first_culled_in_scaled_frame<Arch>(source, group, settings);
+    if constexpr (within) culled.swept_box |= scaled_lanes & scaled.swept_box;
+    culled.sign |= scaled_lanes & scaled.sign;
+  }
   culled.sign &= lanes_in_use & ~culled.swept_box;
   return culled;
 }
@@ -865,14 +891,14 @@ template <class Arch, class MeshSource>
 }
 
 // The first pass over candidates [begin, end), compacting its survivors:
-// `finite` for a source known finite in a call without separations.
+// `finite` for a source known finite.
 template <class Arch, bool within, bool finite, class Source>
 std::size_t first_pass(const Source& source, std::size_t begin, std::size_t end,
                        const reference::FilterSettings& settings, std::uint32_t* survivors, FilterCounts& counts) {
   constexpr std::size_t lanes = Lanes<Arch>::size;
   const auto culled_lanes = [&](const auto& group, std::size_t count) {
     if constexpr (finite) {
-      return finite_whole_interval_culled_lanes<Arch>(source, group, count, settings);
+      return finite_whole_interval_culled_lanes<Arch, within>(source, group, count, settings);
     } else {
       return whole_interval_culled_lanes<Arch, within>(source, group, count, settings);
     }
@@ -952,7 +978,7 @@ std::size_t filter_range_of(const Source& source, std::size_t begin, std::size_t
                             FilterCounts& counts) {
   constexpr std::size_t lanes = Lanes<Arch>::size;
   std::size_t kept = 0;
-  if constexpr (!within && kPacked<Source>) {
+  if constexpr (kPacked<Source>) {
     kept = known_finite(source) ? first_pass<Arch, within, true>(source, begin, end, settings, survivors, counts)
                                 : first_pass<Arch, within, false>(source, begin, end, settings, survivors, counts);
   } else {
