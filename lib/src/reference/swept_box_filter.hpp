@@ -37,11 +37,12 @@ struct SweptBoxes {
   // gap is taken with a margin: each coordinate errs by at most u of
   // `largest` plus the frame's absolute error, the gap's subtraction by u
   // of itself.
+  T threshold(bool within, T separation, T absolute_error = T(0)) const {
+    return within ? (separation + T(8 * kUnitRoundoff) * largest + T(4) * absolute_error) * T(SeparationErrors::grow)
+                  : T(0);
+  }
   auto apart(bool within, T separation, T absolute_error = T(0)) const {
-    const T threshold = within ? (separation + T(8 * kUnitRoundoff) * largest + T(4) * absolute_error) *
-                                     T(SeparationErrors::grow)
-                               : T(0);
-    return widest > threshold;
+    return widest > threshold(within, separation, absolute_error);
   }
 };
 
