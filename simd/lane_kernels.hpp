@@ -592,26 +592,25 @@ template <class Arch, class Source>
   using Double = typename Lanes<Arch>::Double;
   using Mask = typename Lanes<Arch>::Mask;
   const ScaledFrame<Arch> frame(source, group);
-  Double largest[3][2];
-  for (int i = 0; i < 3; ++i)
-    for (int tau = 0; tau < 2; ++tau)
-      largest[i][tau] = Magnitudes<Arch>::largest(frame.relative[i][tau]);
   const Double separation =
       settings.within ? frame.scaled_length(lane_separations<Arch>(settings, group)) : Double(0.0);
   FirstCulls culled;
   if (settings.swept_box && settings.within) {
     culled.swept_box = lane_bits<Arch>(
-        frame.evaluable & reference::swept_boxes_apart(source.kind, frame.relative,
-                                                       pairwise<6>(&largest[0][0], Magnitudes<Arch>::larger), true,
-                                                       separation, frame.absolute_error));
+        frame.evaluable &
+        reference::swept_boxes_apart(source.kind, frame.relative, true, separation, frame.absolute_error));
   } else if (settings.swept_box) {
     // Without a separation the direct frame's boxes, for finite input.
     typename Lanes<Arch>::Vector relative[3][2];
     Gather<Arch>::differences(source, group, relative);
-    culled.swept_box = lane_bits<Arch>(
-        frame.evaluable & reference::swept_boxes_apart(source.kind, relative, Double(0.0), false, Double(0.0)));
+    culled.swept_box =
+        lane_bits<Arch>(frame.evaluable & reference::swept_boxes_apart(source.kind, relative, false, Double(0.0)));
   }
   if (!settings.sign) return culled;
+  Double largest[3][2];
+  for (int i = 0; i < 3; ++i)
+    for (int tau = 0; tau < 2; ++tau)
+      largest[i][tau] = Magnitudes<Arch>::largest(frame.relative[i][tau]);
   const Double floor = reference::coefficient_floor(frame.absolute_error);
   const Mask sign = settings.within ? Mask(reference::plane_distance_culls(source.kind, frame.relative, largest, floor,
                                                                           settings.certified, separation))
@@ -674,8 +673,8 @@ template <class Arch, bool within, class Source, class Group>
     culled.swept_box =
         lanes_in_use & lane_bits<Arch>(differences.within_without_nan(reference::kDirectLowest,
                                                                       reference::kDirectHighest) &
-                                       reference::swept_boxes_apart(source.kind, differences.relative,
-                                                                    differences.overall, within, separation));
+                                       reference::swept_boxes_apart(source.kind, differences.relative, within,
+                                                                    separation));
   // On a padded list the boxes alone settle most groups: the sign test
   // only where a lane is left.
   if (settings.sign && culled.swept_box != lanes_in_use) {
@@ -700,30 +699,92 @@ template <class Arch, bool within, class Source, class Group>
   return culled;
 }
 
-// The first pass without a separation on a source known finite (a mesh's
-// packed rows say so): there the boxes hold in the direct frame whatever
-// the magnitudes (reference::run_filters), so those and the frame's window
-// wait for the sign filter, which only groups with a lane left pay.
-template <class Arch, class Source, class Group>
+// A bound of the boxes' threshold at a separation (SweptBoxes::threshold,
+// direct frame) for every candidate of a mesh whose coordinates are at most
+// m in magnitude (MeshPositions::largest): a lane whose widest gap exceeds
+// it is culled by the exact test too, which it need not measure. Each
+// coordinate of the frame is one rounded difference of two of the mesh's,
+// so at most fl(2m) = 2m in magnitude, and so is `largest`; the threshold
+// is rounded sums and products of `largest` and the separation, each
+// monotonic in its operands, so the same expression of 2m is at least the
+// lane's. Such a lane lies in the direct frame's window as well: its
+// `largest` is at most 2m, below 2^200 for m at most 2^199 (beyond, the
+// bound is infinite and no lane passes), and at least half its widest gap
+// (a rounded difference of two coordinates, at most 2 `largest`), so
+// above 2^-200 once the bound is at least 2^-199. A NaN separation keeps
+// its NaN bound, which no gap exceeds, as none exceeds its threshold.
+template <class Arch, class Source>
+typename Lanes<Arch>::Double threshold_bound(const Source& source, const typename Lanes<Arch>::Double& separation) {
+  using Double = typename Lanes<Arch>::Double;
+  const double m = source.positions.largest;
+  if (!(m <= 0x1p199)) return Double(std::numeric_limits<double>::infinity());
+  const Double bound = reference::SweptBoxes<Double>{Double(0.0), Double(2 * m)}.threshold(true, separation);
+  return xsimd::select(bound < Double(0x1p-199), Double(0x1p-199), bound);
+}
+
+// The first pass on a source known finite (a mesh's packed rows say so):
+// the boxes on the differences alone, before anything is measured, and
+// the sign filter, its frame's window and the scaled frame only for groups
+// with a lane left. Without a separation the boxes hold in the direct frame
+// whatever the magnitudes (reference::run_filters); with one only in its
+// window, which the boxes' own largest magnitude tells (SweptBoxes::largest:
+// for finite input DirectDifferences::overall, bit for bit). `shared_bound`:
+// threshold_bound for a separation shared by every candidate, taken once a
+// call (nullptr with one per candidate).
+template <class Arch, bool within, class Source, class Group>
 [[gnu::flatten]] FirstCulls finite_whole_interval_culled_lanes(const Source& source, const Group& group,
                                                                std::size_t count,
-                                                               const reference::FilterSettings& settings) {
+                                                               const reference::FilterSettings& settings,
+                                                               const typename Lanes<Arch>::Double* shared_bound) {
   using Double = typename Lanes<Arch>::Double;
+  const auto in_window = [](const Double& largest) {
+    return (largest >= Double(reference::kDirectLowest)) & (largest <= Double(reference::kDirectHighest));
+  };
+  // The bound before the loads: a branch between them and the boxes kept
+  // the differences on the stack.
+  const Double bound = !within                 ? Double(0.0)
+                       : shared_bound != nullptr ? *shared_bound
+                                                 : threshold_bound<Arch>(source, lane_separations<Arch>(settings, group));
   typename Lanes<Arch>::Vector relative[3][2];
   Gather<Arch>::differences(source, group, relative);
   const std::uint32_t lanes_in_use = (1u << count) - 1;
   FirstCulls culled;
-  if (settings.swept_box)
-    culled.swept_box = lanes_in_use & lane_bits<Arch>(reference::swept_boxes_apart(source.kind, relative, Double(0.0),
-                                                                                   false, Double(0.0)));
-  if (!settings.sign || culled.swept_box == lanes_in_use) return culled;
+  if (settings.swept_box) {
+    if constexpr (within) {
+      // Most groups settle on the mesh's bound alone (threshold_bound);
+      // the others take the exact test.
+      const auto boxes = reference::swept_boxes(source.kind, relative);
+      culled.swept_box = lanes_in_use & lane_bits<Arch>(boxes.widest > bound);
+      if (culled.swept_box != lanes_in_use)
+        culled.swept_box = lanes_in_use & lane_bits<Arch>(in_window(boxes.largest) &
+                                                          boxes.apart(true, lane_separations<Arch>(settings, group)));
+    } else {
+      culled.swept_box = lanes_in_use & lane_bits<Arch>(reference::swept_boxes_apart(source.kind, relative, false,
+                                                                                     Double(0.0)));
+    }
+    if (culled.swept_box == lanes_in_use) return culled;
+  }
+  // With a separation the scaled frame's boxes too, for lanes outside the window.
+  if (!settings.sign && !within) return culled;
   const DirectDifferences<Arch> differences(relative, true);
-  const auto direct = differences.within(reference::kDirectLowest, reference::kDirectHighest);
-  const auto test = reference::sign_test(differences.relative, differences.largest,
-                                         Double(reference::direct_coefficient_error().floor), settings.certified);
-  culled.sign = lane_bits<Arch>(direct & test.whole());
+  const auto direct = in_window(differences.overall);
+  if (settings.sign) {
+    const Double floor(reference::direct_coefficient_error().floor);
+    if constexpr (within) {
+      culled.sign = lane_bits<Arch>(direct & reference::plane_distance_culls(
+                                                 source.kind, differences.relative, differences.largest, floor,
+                                                 settings.certified, lane_separations<Arch>(settings, group)));
+    } else {
+      const auto test = reference::sign_test(differences.relative, differences.largest, floor, settings.certified);
+      culled.sign = lane_bits<Arch>(direct & test.whole());
+    }
+  }
   const std::uint32_t scaled_lanes = ~lane_bits<Arch>(direct) & lanes_in_use & ~culled.swept_box;
-  if (scaled_lanes != 0) culled.sign |= scaled_lanes & first_culled_in_scaled_frame<Arch>(source, group, settings).sign;
+  if (scaled_lanes != 0) {
+    const FirstCulls scaled = first_culled_in_scaled_frame<Arch>(source, group, settings);
+    if constexpr (within) culled.swept_box |= scaled_lanes & scaled.swept_box;
+    culled.sign |= scaled_lanes & scaled.sign;
+  }
   culled.sign &= lanes_in_use & ~culled.swept_box;
   return culled;
 }
@@ -865,14 +926,23 @@ template <class Arch, class MeshSource>
 }
 
 // The first pass over candidates [begin, end), compacting its survivors:
-// `finite` for a source known finite in a call without separations.
+// `finite` for a source known finite.
 template <class Arch, bool within, bool finite, class Source>
 std::size_t first_pass(const Source& source, std::size_t begin, std::size_t end,
                        const reference::FilterSettings& settings, std::uint32_t* survivors, FilterCounts& counts) {
   constexpr std::size_t lanes = Lanes<Arch>::size;
+  using Double = typename Lanes<Arch>::Double;
+  Double shared_bound_value(0.0);
+  const Double* shared_bound = nullptr;
+  if constexpr (finite && within) {
+    if (settings.min_distances == nullptr) {
+      shared_bound_value = threshold_bound<Arch>(source, Double(settings.min_distance));
+      shared_bound = &shared_bound_value;
+    }
+  }
   const auto culled_lanes = [&](const auto& group, std::size_t count) {
     if constexpr (finite) {
-      return finite_whole_interval_culled_lanes<Arch>(source, group, count, settings);
+      return finite_whole_interval_culled_lanes<Arch, within>(source, group, count, settings, shared_bound);
     } else {
       return whole_interval_culled_lanes<Arch, within>(source, group, count, settings);
     }
@@ -952,7 +1022,7 @@ std::size_t filter_range_of(const Source& source, std::size_t begin, std::size_t
                             FilterCounts& counts) {
   constexpr std::size_t lanes = Lanes<Arch>::size;
   std::size_t kept = 0;
-  if constexpr (!within && kPacked<Source>) {
+  if constexpr (kPacked<Source>) {
     kept = known_finite(source) ? first_pass<Arch, within, true>(source, begin, end, settings, survivors, counts)
                                 : first_pass<Arch, within, false>(source, begin, end, settings, survivors, counts);
   } else {

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <new>
 #include <vector>
@@ -60,6 +62,8 @@ struct MeshPositions {
   // each one's rounding, a zero. nullptr unless every coordinate is finite
   // and below 2^100 in magnitude.
   const float* coarse = nullptr;  // 64-byte aligned
+  // The largest coordinate magnitude of all rows; infinity unless finite.
+  double largest = std::numeric_limits<double>::infinity();
 };
 
 // Where vertex v's row starts among MeshPositions::rows. Always inlined:
@@ -89,11 +93,13 @@ class PackedPositions {
     vertices_ = vertices;
     finite_.store(true, std::memory_order_relaxed);
     coarse_usable_.store(true, std::memory_order_relaxed);
+    largest_bits_.store(0, std::memory_order_relaxed);
   }
 
   // Rows [begin, end): callers may fill disjoint ranges in parallel.
   void pack(const PositionsView& t0, const PositionsView& t1, std::int64_t begin, std::int64_t end) {
     bool finite = true, coarse = true;
+    double range_largest = 0;
     const auto columns = t0.cols();  // 2: a 2D mesh, in the plane z = 0
     t0.visit([&](const auto& start) {
       t1.visit([&](const auto& stop) {
@@ -110,19 +116,27 @@ class PackedPositions {
           for (int c = 0; c < 6; ++c) zero += row[c] - row[c], largest = std::max(largest, std::fabs(row[c]));
           finite &= zero == 0;
           coarse &= largest <= kCoarseLimit;  // a NaN passes here, but not `finite`
+          range_largest = std::max(range_largest, largest);
           pack_coarse(row, largest, coarse_.get() + row_start(v));
         }
       });
     });
     if (!finite) finite_.store(false, std::memory_order_relaxed);
     if (!coarse) coarse_usable_.store(false, std::memory_order_relaxed);
+    // Non-negative doubles order as their bits do.
+    const auto bits = std::bit_cast<std::uint64_t>(range_largest);
+    std::uint64_t seen = largest_bits_.load(std::memory_order_relaxed);
+    while (seen < bits && !largest_bits_.compare_exchange_weak(seen, bits, std::memory_order_relaxed)) {
+    }
   }
 
   // The rows, once pack() has filled them all.
   MeshPositions view() const {
     const bool finite = finite_.load(std::memory_order_relaxed);
     const bool coarse = finite && coarse_usable_.load(std::memory_order_relaxed);
-    return {rows_.get(), vertices_, finite, coarse ? coarse_.get() : nullptr};
+    const double largest = finite ? std::bit_cast<double>(largest_bits_.load(std::memory_order_relaxed))
+                                  : std::numeric_limits<double>::infinity();
+    return {rows_.get(), vertices_, finite, coarse ? coarse_.get() : nullptr, largest};
   }
 
  private:
@@ -155,6 +169,7 @@ class PackedPositions {
   std::unique_ptr<float[], Free> coarse_;
   std::atomic<bool> finite_{true};
   std::atomic<bool> coarse_usable_{true};
+  std::atomic<std::uint64_t> largest_bits_{0};  // MeshPositions::largest's
 };
 
 // Faces, one row of four per face: where its three corners' rows start

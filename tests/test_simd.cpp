@@ -429,6 +429,57 @@ TEST(SimdKernels, SecondPassEvaluatesTheSurvivorsItIsGiven) {
   }
 }
 
+// The packed rows know their largest coordinate magnitude, over both
+// times and every range packed (the lanes bound the boxes' threshold at a
+// separation with it: lane_kernels.hpp, threshold_bound), and infinity
+// once a coordinate is not finite.
+TEST(SimdKernels, PackedRowsKnowTheirLargestMagnitude) {
+  Eigen::MatrixXd t0(4, 3), t1(4, 3);
+  t0 << 1, -2, 0.5, 0, 0, 0, 3, 1, 1, -0.25, 0, 0;
+  t1 = t0;
+  t1(2, 1) = -7.5;  // at t1, negative, in the range packed first
+  simd::PackedPositions packed(4);
+  packed.pack(t0, t1, 2, 4);
+  packed.pack(t0, t1, 0, 2);
+  EXPECT_EQ(packed.view().largest, 7.5);
+  packed.resize(4);  // packed anew: the old rows' largest forgotten
+  t1(2, 1) = 0.5;
+  packed.pack(t0, t1, 0, 4);
+  EXPECT_EQ(packed.view().largest, 3.0);
+  t0(1, 2) = std::numeric_limits<double>::quiet_NaN();
+  packed.resize(4);
+  packed.pack(t0, t1, 0, 4);
+  EXPECT_EQ(packed.view().largest, std::numeric_limits<double>::infinity());
+}
+
+// At a separation s the lanes settle most groups on a bound of the boxes'
+// threshold for the whole mesh before the exact test (threshold_bound).
+// Static edges along x whose boxes lie s + 2^-42 apart at coordinates of
+// 1024: above s, but within the threshold's margin for coordinates'
+// rounding (8 u of 1025, about 2^-40), so the exact test keeps them, and
+// so must the lanes; 2^-36 apart, beyond the margin, all cull them.
+TEST(SimdKernels, BoxesAtASeparationKeepTheirMarginForRounding) {
+  const auto kernels = vector_kernels();
+  if (kernels.empty()) GTEST_SKIP() << "no vector instruction set on this processor";
+  const double separation = 0x1p-10;
+  for (const double beyond : {0x1p-42, 0x1p-36}) {
+    const double gap = separation + beyond;
+    Eigen::MatrixXd t0(4, 3);
+    t0 << 0, 0, 0, 1024, 0, 0, 1024 + gap, 0, 0, 1025 + gap, 0, 1;
+    const simd::PackedPositions packed(t0, t0);
+    const std::vector<std::array<int, 4>> pairs(8, std::array{0, 1, 2, 3});
+    const simd::MeshEdgeEdge source{packed.view(), pairs.data()};
+    const reference::FilterSettings settings{.sign = false, .separation = false, .pieces = 1, .swept_box = true,
+                                             .within = true, .min_distance = separation};
+    const auto expected = survivors(simd::kScalarKernels.edge_edge, source, 0, pairs.size(), settings);
+    const bool kept = beyond < 0x1p-40;
+    EXPECT_EQ(expected.back(), kept ? 0u : pairs.size()) << "boxes' culls, " << beyond << " beyond";
+    for (const simd::FilterKernels* k : kernels)
+      EXPECT_EQ(survivors(k->edge_edge, source, 0, pairs.size(), settings), expected)
+          << to_string(k->isa) << ", " << beyond << " beyond";
+  }
+}
+
 // Every instruction set gives the same final answers as the scalar path.
 TEST(SimdKernels, FinalDecisionsAreIdenticalOnSharedData) {
   if (!testing::shared_data_present()) GTEST_SKIP() << testing::kSharedData << " is absent";

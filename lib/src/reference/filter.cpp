@@ -46,13 +46,11 @@ DirectFrame direct_frame(Kind kind, const Query& query) {
 struct ScaledDifferences {
   Vector3<double> relative[3][2];
   double largest[3][2];
-  double overall = 0;
   explicit ScaledDifferences(const ScaledQuery& scaled) {
     for (int i = 0; i < 3; ++i)
       for (int tau = 0; tau < 2; ++tau) {
         relative[i][tau] = as_vector(scaled.relative[i][tau]);
         largest[i][tau] = largest_magnitude(relative[i][tau]);
-        overall = std::max(overall, largest[i][tau]);
       }
   }
 };
@@ -105,7 +103,7 @@ FilterVerdict run_filters_within(Kind kind, const Query& query, const FilterSett
   const DirectFrame direct = direct_frame(kind, query);
   const bool in_window = direct.within(kDirectLowest, kDirectHighest);
   verdict.swept_box = settings.swept_box && in_window &&
-                      swept_boxes_apart(kind, direct.relative, direct.overall, true, separation);
+                      swept_boxes_apart(kind, direct.relative, true, separation);
   if (verdict.swept_box) return verdict;
   const bool sign_scaled = settings.sign && !in_window;
   const bool boxes_scaled = settings.swept_box && !in_window;
@@ -126,8 +124,8 @@ FilterVerdict run_filters_within(Kind kind, const Query& query, const FilterSett
   if (!scaled.finite || scaled.coincident) return verdict;  // for the solver's own checks
   const double scaled_separation = to_scaled_length(scaled, separation);
   const ScaledDifferences frame(scaled);
-  verdict.swept_box = boxes_scaled && swept_boxes_apart(kind, frame.relative, frame.overall, true,
-                                                        scaled_separation, scaled.absolute_error);
+  verdict.swept_box = boxes_scaled && swept_boxes_apart(kind, frame.relative, true, scaled_separation,
+                                                        scaled.absolute_error);
   if (verdict.swept_box) return verdict;
   if (sign_scaled)
     verdict.sign = plane_distance_culls(kind, frame.relative, frame.largest, coefficient_floor(scaled.absolute_error),
@@ -156,7 +154,7 @@ FilterVerdict run_filters(Kind kind, const Query& query, const FilterSettings& s
   // (swept_box_filter.hpp): the direct one serves every finite query, in
   // its window or not (a window implies finite input).
   verdict.swept_box = settings.swept_box && (in_window || all_finite(query)) &&
-                      swept_boxes_apart(kind, direct.relative, direct.overall, false, 0.0);
+                      swept_boxes_apart(kind, direct.relative, false, 0.0);
   if (verdict.swept_box) return verdict;
   const bool sign_scaled = settings.sign && !in_window;
   if (settings.sign && !sign_scaled)
