@@ -18,12 +18,14 @@
 namespace batchccd {
 namespace {
 
+#ifdef __aarch64__
 std::string bits(double x) {
   char text[64];
   std::snprintf(text, sizeof text, "%a (0x%016llx)", x,
                 static_cast<unsigned long long>(std::bit_cast<std::uint64_t>(x)));
   return text;
 }
+#endif
 
 // Both operand orders, each in either lane: every pair of these values, a
 // NaN with its sign bit set and one with a payload among them, whose bits
