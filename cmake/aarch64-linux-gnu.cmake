@@ -13,6 +13,9 @@ set(CMAKE_LIBRARY_ARCHITECTURE aarch64-linux-gnu)
 set(CMAKE_IGNORE_PATH /usr/lib/x86_64-linux-gnu /usr/lib/x86_64-linux-gnu/cmake)
 # pkg-config (GMP) reads the arm64 .pc files alone.
 set(ENV{PKG_CONFIG_LIBDIR} /usr/lib/aarch64-linux-gnu/pkgconfig:/usr/share/pkgconfig)
-# ctest (and gtest_discover_tests) run the test programs through qemu, the
-# loader and libraries taken from the cross toolchain's root.
-set(CMAKE_CROSSCOMPILING_EMULATOR qemu-aarch64;-L;/usr/aarch64-linux-gnu)
+# ctest (and gtest_discover_tests) run the test programs through qemu, with
+# the loader and C library of the arm64 packages (libc6:arm64, under /), not
+# the cross toolchain's root (/usr/aarch64-linux-gnu): its loader beside
+# libc6:arm64's libc.so.6, another Debian revision of glibc 2.36 whose
+# private layout differs, made the first pthread_create loop for ever.
+set(CMAKE_CROSSCOMPILING_EMULATOR qemu-aarch64;-L;/)
