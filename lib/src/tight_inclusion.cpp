@@ -8,8 +8,9 @@
 
 namespace batchccd::ticcd::detail {
 
-bool decide(const char* call, Kind kind, const Query& query, double ms, double& toi, double tolerance,
-            double t_max, long max_itr, double& output_tolerance) {
+bool decide(const char* call, Kind kind, std::span<const batchccd::detail::PointArgument> points, double ms,
+            double& toi, double tolerance, double t_max, long max_itr, double& output_tolerance) {
+  const Query query = batchccd::detail::query_from_points(call, kind, points);
   fronts::require(ms >= 0 && std::isfinite(ms), call, "ms", ">= 0 and finite", ms);
   fronts::require(t_max > 0 && t_max <= 1, call, "t_max", "in (0, 1]", t_max);
   fronts::require(tolerance > 0 && std::isfinite(tolerance), call, "tolerance", "positive and finite", tolerance);

@@ -35,9 +35,11 @@ using Vector3 = Vec3;
 using Array3 = Eigen::Array3d;
 
 namespace detail {
-// Both calls, once their points are a query.
-bool decide(const char* call, Kind kind, const Query& query, double ms, double& toi, double tolerance,
-            double t_max, long max_itr, double& output_tolerance);
+// Both calls, once their points are read (t0 points, then t1 points):
+// checks the lengths (std::invalid_argument naming `call` and the
+// argument), then the other arguments, then decides.
+bool decide(const char* call, Kind kind, std::span<const batchccd::detail::PointArgument> points, double ms,
+            double& toi, double tolerance, double t_max, long max_itr, double& output_tolerance);
 using batchccd::detail::BracedPoint;
 using batchccd::detail::read_points;
 }  // namespace detail
@@ -50,15 +52,13 @@ bool vertexFaceCCD(const P0& vertex_start, const P1& face_vertex0_start, const P
                    const P3& face_vertex2_start, const P4& vertex_end, const P5& face_vertex0_end,
                    const P6& face_vertex1_end, const P7& face_vertex2_end, const Array3& /*err*/, double ms,
                    double& toi, double tolerance, double t_max, long max_itr, double& output_tolerance) {
-  constexpr const char* call = "batchccd::ticcd::vertexFaceCCD";
   const auto points = detail::read_points(
       {"vertex_start", "face_vertex0_start", "face_vertex1_start", "face_vertex2_start", "vertex_end",
        "face_vertex0_end", "face_vertex1_end", "face_vertex2_end"},
       vertex_start, face_vertex0_start, face_vertex1_start, face_vertex2_start, vertex_end, face_vertex0_end,
       face_vertex1_end, face_vertex2_end);
-  return detail::decide(call, Kind::vertex_face,
-                        batchccd::detail::query_from_points(call, Kind::vertex_face, points), ms, toi, tolerance,
-                        t_max, max_itr, output_tolerance);
+  return detail::decide("batchccd::ticcd::vertexFaceCCD", Kind::vertex_face, points, ms, toi, tolerance, t_max,
+                        max_itr, output_tolerance);
 }
 
 template <class P0 = detail::BracedPoint, class P1 = detail::BracedPoint, class P2 = detail::BracedPoint,
@@ -69,14 +69,13 @@ bool edgeEdgeCCD(const P0& edge0_vertex0_start, const P1& edge0_vertex1_start, c
                  const P3& edge1_vertex1_start, const P4& edge0_vertex0_end, const P5& edge0_vertex1_end,
                  const P6& edge1_vertex0_end, const P7& edge1_vertex1_end, const Array3& /*err*/, double ms,
                  double& toi, double tolerance, double t_max, long max_itr, double& output_tolerance) {
-  constexpr const char* call = "batchccd::ticcd::edgeEdgeCCD";
   const auto points = detail::read_points(
       {"edge0_vertex0_start", "edge0_vertex1_start", "edge1_vertex0_start", "edge1_vertex1_start",
        "edge0_vertex0_end", "edge0_vertex1_end", "edge1_vertex0_end", "edge1_vertex1_end"},
       edge0_vertex0_start, edge0_vertex1_start, edge1_vertex0_start, edge1_vertex1_start, edge0_vertex0_end,
       edge0_vertex1_end, edge1_vertex0_end, edge1_vertex1_end);
-  return detail::decide(call, Kind::edge_edge, batchccd::detail::query_from_points(call, Kind::edge_edge, points),
-                        ms, toi, tolerance, t_max, max_itr, output_tolerance);
+  return detail::decide("batchccd::ticcd::edgeEdgeCCD", Kind::edge_edge, points, ms, toi, tolerance, t_max,
+                        max_itr, output_tolerance);
 }
 
 }  // namespace batchccd::ticcd
