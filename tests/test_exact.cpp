@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <optional>
 #include <random>
 #include <sstream>
@@ -124,6 +125,70 @@ TEST(ExactAlgebra, SignAtARootIsExactZeroOrRefinedUntilSure) {
   IsolatedRoot two_thirds = (*roots)[1];
   EXPECT_EQ(sign(just_above, two_thirds), 1);
   EXPECT_EQ(sign(product_of_roots({{1, 3}}), two_thirds), 1);
+}
+
+// The sign of p at a root of q from the remainder sequence alone, with no
+// narrowing: every root rational, so that each sign is known from the
+// factors, zeros included (p sharing the root's factor) and signs of p
+// whose own root lies within the interval's width of q's.
+TEST(ExactAlgebra, SignAtAnIsolatedRootFromTheRemainderSequence) {
+  std::mt19937 random(7);
+  std::uniform_int_distribution<long> small(-9, 9), denominator(1, 9);
+  constexpr unsigned long kExponent = 20;  // intervals [k, k + 1] 2^-20
+  int zeros = 0, near = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    // q: three distinct rational roots in (0, 1), either overall sign.
+    std::vector<std::pair<long, long>> roots;  // root = first / second
+    while (roots.size() < 3) {
+      const long d = denominator(random), n = std::uniform_int_distribution<long>(1, d)(random);
+      const bool repeated =
+          std::any_of(roots.begin(), roots.end(), [&](const auto& r) { return r.first * d == n * r.second; });
+      if (n < d && !repeated) roots.push_back({n, d});
+    }
+    Polynomial q = product_of_roots(roots);
+    if ((trial / 4) % 2) q = -q;  // not in step with the factor count below
+    const auto [n, d] = roots[trial % 3];
+    // [k, k + 1] 2^-20 holds n / d and no other root (roots differ by 1/81
+    // at least), and q vanishes at neither end unless n / d is dyadic: then
+    // it would be low itself, and the trial is skipped.
+    if (const long reduced = d / std::gcd(n, d); (reduced & (reduced - 1)) == 0) continue;
+    const Integer low(static_cast<long>(std::floor(std::ldexp(static_cast<double>(n) / d, kExponent))));
+    const Integer high = low + Integer(1);
+    const int sign_below = exact::sign_at_dyadic(q, low, kExponent);  // q's sign on (low, n / d)
+    // p: up to four factors (a t - b), the first of them d t - n itself
+    // for a third of the trials, or one whose root lies 2^-24 / d from n / d
+    // for another third.
+    std::vector<std::pair<long, long>> factors;
+    const int count = 1 + trial % 4;
+    int expected = 1;
+    for (int f = 0; f < count; ++f) {
+      long a = 0, b = 0;
+      if (f == 0 && trial % 3 == 0) {
+        a = d, b = n;
+        ++zeros;
+      } else if (f == 0 && trial % 3 == 1) {
+        a = d << 24, b = (n << 24) + (trial % 2 ? 1 : -1);
+        ++near;
+      } else {
+        while (a == 0) a = small(random);
+        b = small(random);
+      }
+      factors.push_back({b, a});  // product_of_roots' (numerator t - denominator) is (a t - b)
+      expected *= (a * n - b * d > 0) - (a * n - b * d < 0);  // sign of a (n / d) - b, d > 0
+    }
+    Polynomial p = product_of_roots(factors);
+    const std::optional<int> sign = exact::sign_at_isolated_root(q, sign_below, p, low, high, kExponent);
+    ASSERT_TRUE(sign.has_value()) << "trial " << trial;
+    EXPECT_EQ(*sign, expected) << "trial " << trial << ": root " << n << "/" << d;
+  }
+  EXPECT_GT(zeros, 50);
+  EXPECT_GT(near, 50);
+}
+
+TEST(ExactAlgebra, SignAtAnIsolatedRootDeclinesWhereTheIntervalEndsOnARoot) {
+  const Polynomial q = product_of_roots({{1, 2}, {1, 3}, {3, 4}});
+  // (1/4, 1/2) holds 1/3 alone, but q vanishes at 1/2.
+  EXPECT_FALSE(exact::sign_at_isolated_root(q, -1, product_of_roots({{1, 5}}), Integer(1), Integer(2), 2));
 }
 
 TEST(ExactAlgebra, LowerBoundNeverAboveTheRoot) {

@@ -2,7 +2,7 @@
 // arithmetic against GMP rationals, and the stage's decisions against the
 // same queries decided with integers alone, on families that reach every
 // branch: generic crossings, contacts exactly on an edge or at a corner
-// (the zero test), near misses a few ulps off them (the filter's margins),
+// (zeros at the root, from the remainder sequence), near misses a few ulps off them (the filter's margins),
 // contacts at t = 0 and t = 1, tmax, and scales 2^+-400.
 #include <gtest/gtest.h>
 
@@ -133,8 +133,8 @@ Query random_grid_query(std::mt19937_64& random) {
 // A contact placed exactly on an edge or at a corner at t = 1/q, q in
 // {2, 3, 5}: the vertex (or edge b's first point) meets edge a at parameter
 // s in {0, 1/2, 1}. Every coordinate stays exact; for q = 3 and 5 the root
-// is no dyadic, and only the zero test can tell the contact is on the
-// boundary.
+// is no dyadic, and only the remainder sequence can tell the contact is on
+// the boundary.
 Query boundary_contact(Kind kind, std::mt19937_64& random) {
   std::uniform_int_distribution<int> pick(0, 2);
   const double s = pick(random) / 2.0, q = std::array{2.0, 3.0, 5.0}[pick(random)];
@@ -182,9 +182,9 @@ TEST(ExpansionStage, DecidesAsIntegersOnContactsOnAnEdgeOrACornerAndBesideThem) 
       expect_as_integers(kind, query, 1.0, exact_contacts);
       expect_as_integers(kind, jittered(query, random), 1.0, near_contacts);
     }
-  // Every query of the first family is a contact; the zero test settles
-  // most without integers, and the grids past the doubles' most of the
-  // second.
+  // Every query of the first family is a contact; the remainder sequence
+  // settles most without the integer stage, and the slope tests most of
+  // the second.
   EXPECT_EQ(exact_contacts.hits, exact_contacts.decided);
   EXPECT_GT(exact_contacts.decided, kQueries * 3 / 4);
   EXPECT_GT(near_contacts.decided, kQueries * 2 / 3);
@@ -212,9 +212,9 @@ Query axis_scaled(Query query, int axis, int exponent) {
 }
 
 TEST(ExpansionStage, DecidesContactsOnAnEdgeWithCoordinatesSpreadOverManyBinades) {
-  // The zero test's remainder sequence outgrows expansions here (terms of
-  // the coefficients 2^100 and more apart); it must still settle the
-  // contact without leaving the query to the integer stage.
+  // A remainder sequence outgrows expansions here (terms of the
+  // coefficients 2^100 and more apart); in integers it must still settle
+  // the contact without leaving the query to the integer stage.
   constexpr int kQueries = 200;
   const Tally tally = decide_family(7, kQueries, [](Kind kind, std::mt19937_64& random, int trial) {
     return axis_scaled(boundary_contact(kind, random), trial % 3, -50);
@@ -226,7 +226,7 @@ TEST(ExpansionStage, DecidesContactsOnAnEdgeWithCoordinatesSpreadOverManyBinades
 TEST(ExpansionStage, TellsASharedFactorElsewhereFromAZeroAtTheRoot) {
   // A vertex placed on a corner at t = 1/5, then one coordinate moved by
   // an ulp: a miss, where the cubic and a contact numerator still share a
-  // factor, whose zero is not the root in question. A zero test that took
+  // factor, whose zero is not the root in question. A sign test that took
   // any common factor for a zero at the root reported a contact at 1/5.
   // (Found by fuzz_expansion_stage.)
   const Query query = make_query({Vec3(0, -0x1.b8p+23, -0x1.4p+20), Vec3(-0x1.4p+22, 0x1.2cp+24, 0x1.ccp+24),
@@ -296,7 +296,7 @@ TEST(ExpansionStage, SettlesAGenericCrossingAndAnEdgeContact) {
   EXPECT_TRUE(crossing->hit);
   EXPECT_EQ(crossing->toi, 0.5);
   // Edges crossing at an endpoint of one, at t = 1/3: a root no dyadic
-  // equals, where a parameter is exactly 1 (the zero test).
+  // equals, where a parameter is exactly 1 (the remainder sequence).
   const Query endpoint = make_query({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, -1, 1), Vec3(1, 1, 1)},
                                     {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, -1, -2), Vec3(1, 1, -2)});
   const std::optional<ExactOutcome> at_endpoint = exact::solve_with_expansions(Kind::edge_edge, endpoint, true, 1.0);
@@ -411,11 +411,12 @@ TEST(ExpansionStage, DecidesPlanarContactsAtTheEndsOfTheStepAndLeavesFlatTriangl
   }
 }
 
-TEST(ExpansionStage, LeavesToIntegersWhatWouldUnderflowItsZeroTest) {
+TEST(ExpansionStage, DecidesAVertexPassingJustOutsideACorner) {
   // From the stiff and extreme suite (fast motion, 1e3): the vertex passes
-  // 1.8e-14 of the face's size outside a corner. The zero test's remainders
-  // outgrow the double range here; computed regardless, they "found" a
-  // zero and a contact.
+  // 1.8e-14 of the face's size outside a corner, two numerators' roots
+  // within 2^-52 of the cubic's. Remainders in expansions once outgrew the
+  // double range here and "found" a zero and a contact; the slope test on
+  // the root narrowed to 2^-76 now settles both signs.
   const std::array<double, 24> hex{
       -0x1.1a9693762d7f6p+8, -0x1.797276b42be0ep+9, 0x1.cf11389d0edbdp+4, 0x1.cc8a113451b7ap-1,
       0x1.3a1707c165e1ap-1,  0x1.383f50eeb959cp-1,  -0x1.7d93db032f46p-4, -0x1.ed2fd9aeef948p-3,
@@ -427,9 +428,8 @@ TEST(ExpansionStage, LeavesToIntegersWhatWouldUnderflowItsZeroTest) {
   for (int i = 0; i < 8; ++i) query.points[i] = Vec3(hex[3 * i], hex[3 * i + 1], hex[3 * i + 2]);
   EXPECT_FALSE(exact::solve_with_integers(Kind::vertex_face, query, true, 1.0).hit);
   const std::optional<ExactOutcome> expansions = exact::solve_with_expansions(Kind::vertex_face, query, true, 1.0);
-  if (expansions) {
-    EXPECT_FALSE(expansions->hit);
-  }
+  ASSERT_TRUE(expansions);
+  EXPECT_FALSE(expansions->hit);
 }
 
 TEST(ExpansionStage, FirstRootAsIntegersLocateIt) {

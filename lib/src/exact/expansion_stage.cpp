@@ -20,10 +20,10 @@ using Value = BoundedExpansion;
 
 // The TOI grid: roots are located to intervals [k, k + 1] 2^-40, and
 // where signs need it to 2^-52 (the finest grid of doubles in [1/2, 1)),
-// then 2^-76 and 2^-100, with times held as two doubles.
+// then for a numerator's sign to 2^-76, with times held as two doubles.
 constexpr int kGridBits = static_cast<int>(kToiBits);
 constexpr int kDoubleGridBits = 52;
-constexpr int kFinerGridBits[] = {76, 100};
+constexpr int kFinerGridBits = 76;
 
 // Why expansions stay exact here (expansion.hpp: no overflow, no
 // underflow). The query is normalized: coordinates below 2 in magnitude,
@@ -385,18 +385,16 @@ void narrow_to_grid(const Polynomial4& cubic, Root& root, int bits) {
   }
 }
 
-// Narrows the root, already within a cell of the doubles' grid, to a cell
-// of 2^-bits, bits in (52, 100]: exact signs at low + j 2^-bits, the first
-// two probes next to Newton's step from low (the cubic and its slope there
-// exact, then rounded: the step is good to about 2^-100 where the root is
-// simple and the cubic's curvature plays no part across 2^-52), bisection
-// after.
-void narrow_finer(const Polynomial4& cubic, Root& root, int bits) {
-  if (root.exact) return;
-  const double cell = std::ldexp(1.0, -bits);
-  if (!root.fine()) root.fine_width = root.high - root.low;
-  std::uint64_t low = static_cast<std::uint64_t>(std::ldexp(root.fine_low, bits));
-  std::uint64_t high = low + static_cast<std::uint64_t>(std::ldexp(root.fine_width, bits));
+// Narrows the root, within a cell of the doubles' grid, to a cell of the
+// finer grid: exact signs at low + j 2^-76, the first two probes next to
+// Newton's step from low (the cubic and its slope there exact, then
+// rounded: the step is good to about 2^-100 where the root is simple and
+// the cubic's curvature plays no part across 2^-52), bisection after.
+void narrow_finer(const Polynomial4& cubic, Root& root) {
+  constexpr int bits = kFinerGridBits;
+  if (root.exact || root.fine()) return;
+  std::uint64_t low = 0;
+  std::uint64_t high = static_cast<std::uint64_t>(std::ldexp(root.high - root.low, bits));
   const auto probe = [&](std::uint64_t k) {
     const double offset = std::ldexp(static_cast<double>(k), -bits);  // exact: below 2^53 cells
     const int sign = cubic.at(Value(root.low) + Value(offset)).sign();
@@ -425,7 +423,7 @@ void narrow_finer(const Polynomial4& cubic, Root& root, int bits) {
   while (!root.exact && high - low > 1) probe(low + (high - low) / 2);
   if (root.exact) return;
   root.fine_low = std::ldexp(static_cast<double>(low), -bits);
-  root.fine_width = cell;
+  root.fine_width = std::ldexp(1.0, -bits);
 }
 
 // p scaled by a power of two (its roots and signs unchanged) to a largest
@@ -443,51 +441,77 @@ bool scaled_to_unit(Polynomial4& p, double floor) {
   return true;
 }
 
+// The exponent of a term's last bit: the term is an integer (of 53 bits)
+// times 2^lowest_bit.
+int lowest_bit(double term) {
+  int exponent = 0;
+  std::frexp(term, &exponent);
+  return exponent - 53;
+}
+
+// The sum of an expansion's terms times 2^-lowest (every term's last bit at
+// or above 2^lowest): each term's 53-bit integer added into the limbs of
+// the positive or the negative part at its offset, in time linear in the
+// terms and the result's length (shifting each term into an integer of its
+// own and adding costs the length per term).
+Integer as_integer(std::span<const double> terms, int lowest) {
+  if (terms.empty()) return Integer();
+  constexpr int kLimbBits = GMP_NUMB_BITS;
+  constexpr int kAddendLimbs = 53 / kLimbBits + 2;  // 53 bits shifted by less than a limb
+  const int bits = lowest_bit(terms.back()) + 54 - lowest;  // the largest term, and a carry
+  const auto limbs = static_cast<mp_size_t>(bits / kLimbBits + 2);
+  Integer positive, negative;
+  mp_limb_t* const parts[2] = {mpz_limbs_write(positive.get(), limbs), mpz_limbs_write(negative.get(), limbs)};
+  std::fill_n(parts[0], limbs, 0);
+  std::fill_n(parts[1], limbs, 0);
+  for (const double term : terms) {
+    std::array<mp_limb_t, kAddendLimbs> addend{};
+    auto digits = static_cast<std::uint64_t>(std::ldexp(std::fabs(term), -lowest_bit(term)));  // below 2^53
+    for (mp_limb_t& limb : addend) {
+      limb = static_cast<mp_limb_t>(digits) & GMP_NUMB_MASK;
+      if constexpr (kLimbBits < 64) digits >>= kLimbBits;
+      else digits = 0;
+    }
+    const int offset = lowest_bit(term) - lowest;
+    if (offset % kLimbBits != 0) mpn_lshift(addend.data(), addend.data(), kAddendLimbs, offset % kLimbBits);
+    mp_limb_t* const part = parts[term < 0] + offset / kLimbBits;
+    const mp_size_t room = limbs - offset / kLimbBits;
+    mpn_add(part, part, room, addend.data(), std::min<mp_size_t>(kAddendLimbs, room));
+  }
+  mpz_limbs_finish(positive.get(), limbs);
+  mpz_limbs_finish(negative.get(), limbs);
+  return positive - negative;
+}
+
 // p times a power of two, with integer coefficients: every term of an
 // expansion is a 53-bit integer times a power of two.
 Polynomial as_integers(const Polynomial4& p) {
-  const auto lowest_bit = [](double term) {
-    int exponent = 0;
-    std::frexp(term, &exponent);
-    return exponent - 53;
-  };
   int lowest = std::numeric_limits<int>::max();
   for (int i = 0; i < p.size; ++i)
     for (const double term : p.c[i].terms()) lowest = std::min(lowest, lowest_bit(term));
   Polynomial result;
-  for (int i = 0; i < p.size; ++i) {
-    Integer coefficient, part;
-    for (const double term : p.c[i].terms()) {
-      mpz_set_d(part.get(), std::ldexp(term, -lowest_bit(term)));  // a 53-bit integer: exact
-      part.shift_left(static_cast<unsigned long>(lowest_bit(term) - lowest));
-      coefficient += part;
-    }
-    result.coefficients.push_back(std::move(coefficient));
-  }
+  for (int i = 0; i < p.size; ++i) result.coefficients.push_back(as_integer(p.c[i].terms(), lowest));
   result.trim();
   return result;
 }
 
-// Whether p vanishes at the root in (low, high) of `defining` (given as
-// integers: as_integers): exactly when their gcd does. The gcd divides
-// `defining`, so the root is its only one in the interval and a simple one:
-// its sign changes there. nullopt when the gcd vanishes at an end.
+// The sign of p at the root in (low, high) of `defining` (given as
+// integers: as_integers), exactly and at once (sign_at_isolated_root),
+// where the interval's ends lie on the doubles' grid; nullopt when
+// `defining` vanishes at one of them.
 //
 // In integers, not expansions: the remainder sequence's coefficients grow
 // with each step, past the expansions' bounded length where coordinates
 // spread over many binades, and even where they fit the integers' few
 // products of short polynomials cost less.
-std::optional<bool> vanishes_at(const Polynomial& defining, const Polynomial4& p, const Root& root) {
-  const Polynomial common = greatest_common_divisor(defining, as_integers(p));
-  if (common.degree() < 1) return false;
-  const auto sign_at = [&](double t) {  // t on the time grid
+std::optional<int> sign_in_integers(const Polynomial& defining, const Polynomial4& p, const Root& root) {
+  const auto on_grid = [](double t) {
     Integer numerator;
-    mpz_set_d(numerator.get(), std::ldexp(t, kTimeFloor));
-    return sign_at_dyadic(common, numerator, kTimeFloor);
+    mpz_set_d(numerator.get(), std::ldexp(t, kDoubleGridBits));  // an integer below 2^53: exact
+    return numerator;
   };
-  const int low = sign_at(root.low), high = sign_at(root.high);
-  if (low == 0 || high == 0) return std::nullopt;
-  return low != high;
+  return sign_at_isolated_root(defining, root.sign_after_low, as_integers(p), on_grid(root.low),
+                               on_grid(root.high), kDoubleGridBits);
 }
 
 // Whether the primitives touch at a time where n = A x B vanishes (parallel
@@ -512,67 +536,103 @@ bool touches_where_flat(Kind kind, const Motion<Value>& v) {
   return (from.sign() >= 0 || to.sign() >= 0) && ((length - from).sign() >= 0 || (length - to).sign() >= 0);
 }
 
-// Which of a root's contact numerators vanish there (vanishes_at), each
-// asked once: the gcd is the costly step, and the answer does not depend on
-// how narrow the root's interval is. Numerators as polynomials, formed when
-// first asked for.
-class ZerosAtRoot {
+// The sign of p at the root in (low, high) where p's exact value at low
+// beats how far p can drift across the interval, bounded by Taylor: its
+// exact slope at low and its curvature on [0, 1]; nullopt otherwise.
+std::optional<int> sign_by_slope(const Polynomial4& p, const Root& root) {
+  constexpr double kMargin = 1 + 0x1p-40;  // covers the estimates' few ulps and the bound's own rounding
+  Polynomial4 slope;
+  double curvature = 0;
+  slope.size = std::max(p.size - 1, 0);
+  for (int i = 1; i < p.size; ++i) {
+    slope.c[i - 1] = p.c[i] * static_cast<double>(i);
+    curvature += i * (i - 1) * std::fabs(p.c[i].estimate());
+  }
+  const auto settle = [&](const auto& low) -> std::optional<int> {
+    const double width = root.width();
+    const double drift = width * (std::fabs(slope.at(low).estimate()) + width * curvature) * kMargin * kMargin;
+    const Value value = p.at(low);
+    if (std::fabs(value.estimate()) > drift * kMargin) return value.sign();
+    return std::nullopt;
+  };
+  return root.fine() ? settle(root.low_time()) : settle(root.low);
+}
+
+// The signs of a root's contact numerators there, each found once, for a
+// root narrowed to the doubles' grid: from the numerator's polynomial and
+// its slope over the root's interval (sign_by_slope), else over the root
+// narrowed to the finer grid, else from the remainder sequence in integers
+// (sign_in_integers), which alone tells a zero at the root (a contact on the
+// boundary) and costs the most. The answer does not depend on how narrow
+// the root's interval is. Numerators as polynomials, formed when first
+// asked for.
+class SignsAtRoot {
  public:
-  ZerosAtRoot(Kind kind, const Motion<Polynomial4>& motion, const Polynomial4& cubic)
+  SignsAtRoot(Kind kind, const Motion<Polynomial4>& motion, const Polynomial4& cubic)
       : cubic_(cubic), polynomials_(kind, motion) {}
 
-  // Whether numerator k (or, k = kSquared, N = |n|^2) vanishes at the root:
-  // false where the test cannot tell.
-  bool vanishes(int k, const Root& root) { return test(k, root) == true; }
-  bool nonzero(int k, const Root& root) { return test(k, root) == false; }
-  static constexpr int kSquared = 4;
-
- private:
-  std::optional<bool> test(int k, const Root& root) {
+  // The sign of numerator k (or, k = kSquared, of N = |n|^2) at the root;
+  // nullopt where the test cannot tell.
+  std::optional<int> operator()(int k, const Root& root) {
     if (!known_[k]) {
       try {
-        if (!cubic_integers_) cubic_integers_ = primitive_part(as_integers(cubic_));
-        known_[k] = vanishes_at(*cubic_integers_, k == kSquared ? polynomials_.squared() : polynomials_[k], root);
+        const Polynomial4& p = k == kSquared ? polynomials_.squared() : polynomials_[k];
+        known_[k] = sign_by_slope(p, root);
+        if (!*known_[k]) {
+          const Root& finer = finer_root(root);
+          known_[k] = finer.exact ? p.at(finer.low_time()).sign() : sign_by_slope(p, finer);
+        }
+        if (!*known_[k]) known_[k] = sign_in_integers(cubic_integers(), p, root);
       } catch (const Value::TooLong&) {  // the numerator itself outgrew the expansions
         return std::nullopt;
       }
     }
-    return known_[k];
+    return *known_[k];
+  }
+  static constexpr int kSquared = 4;
+
+ private:
+  const Polynomial& cubic_integers() {
+    if (!cubic_integers_) cubic_integers_ = as_integers(cubic_);
+    return *cubic_integers_;
+  }
+  const Root& finer_root(const Root& root) {
+    if (!finer_root_) narrow_finer(cubic_, finer_root_.emplace(root));
+    return *finer_root_;
   }
 
   const Polynomial4& cubic_;
-  std::optional<Polynomial> cubic_integers_;  // formed at the first test
+  std::optional<Polynomial> cubic_integers_;  // these two formed when first needed
+  std::optional<Root> finer_root_;
   LazyNumerators<Polynomial4> polynomials_;
-  std::array<std::optional<bool>, 5> known_;
+  std::array<std::optional<std::optional<int>>, 5> known_;
 };
 
 // Whether the primitives touch at the root; nullopt when the signs do not
 // settle it at this width. Each numerator's sign comes from its estimate,
 // else from its exact value at the interval's low end, each against how
-// far it can drift over the interval; given zero tests, a numerator still
-// unsettled is tested for a zero at the root (a contact on the boundary).
+// far it can drift over the interval; given exact signs, a numerator still
+// unsettled takes its sign at the root from them (a contact on the
+// boundary, or a numerator too small for the interval).
 std::optional<bool> touches_at(Kind kind, const Motion<Polynomial4>& motion, const Root& root,
-                               ZerosAtRoot* zeros = nullptr) {
+                               SignsAtRoot* exact_signs = nullptr) {
   constexpr double kMargin = 1 + 0x1p-30;  // covers the rounding of the bounds themselves
-  // The estimate is taken at low, a double; past the doubles' grid only the
-  // exact value at the root's fine interval is close enough.
-  const double estimate_width = root.fine() ? root.high - root.low : root.width();
-  const double exact_width = root.width();
-  const Motion<Estimate> estimated = estimated_on(motion, root.low, estimate_width);
+  const double width = root.width();
+  const Motion<Estimate> estimated = estimated_on(motion, root.low, width);
   LazyNumerators<Estimate> estimates(kind, estimated);
   std::optional<Motion<Value>> exact_motion;
   std::optional<LazyNumerators<Value>> exact;
   const auto exact_numerators = [&]() -> LazyNumerators<Value>& {
-    if (!exact) exact.emplace(kind, exact_motion.emplace(exactly_at(motion, root.low_time())));
+    if (!exact) exact.emplace(kind, exact_motion.emplace(exactly_at(motion, root.low)));
     return *exact;
   };
   std::array<std::optional<int>, 4> signs;
   for (int k = 0; k < estimates.count(); ++k) {
     const Estimate estimate = estimates[k];
-    const double drift = exact_width * estimate.slope;
-    if (!root.fine() && std::fabs(estimate.value) > (estimate.error + drift) * kMargin + 0x1p-1000) {
+    const double drift = width * estimate.slope;
+    if (std::fabs(estimate.value) > (estimate.error + drift) * kMargin + 0x1p-1000) {
       signs[k] = estimate.value > 0 ? 1 : -1;
-    } else if (root.fine() || root.exact || std::fabs(estimate.value) + estimate.error > drift * kMargin) {
+    } else if (root.exact || std::fabs(estimate.value) + estimate.error > drift * kMargin) {
       // The exact value may beat the drift.
       const Value value = exact_numerators()[k];
       if (root.exact || std::fabs(value.estimate()) > drift * kMargin) signs[k] = value.sign();
@@ -583,15 +643,16 @@ std::optional<bool> touches_at(Kind kind, const Motion<Polynomial4>& motion, con
   }
   int positive = 0;
   for (int k = 0; k < estimates.count(); ++k) {
-    if (!signs[k] && zeros && zeros->vanishes(k, root)) signs[k] = 0;
+    if (!signs[k] && exact_signs) signs[k] = (*exact_signs)(k, root);
     if (!signs[k]) return std::nullopt;  // the next grid may settle it; then the others are tested
+    if (*signs[k] < 0) return false;
     positive += *signs[k] > 0;
   }
   if (positive > 0) return true;
   // Every numerator zero: a contact where n != 0; where n = 0, the flat
   // configuration decides at an exact time.
   if (root.exact) return exact_numerators().squared().sign() > 0 || touches_where_flat(kind, *exact_motion);
-  if (zeros && zeros->nonzero(ZerosAtRoot::kSquared, root)) return true;
+  if (exact_signs && (*exact_signs)(SignsAtRoot::kSquared, root) > 0) return true;
   return std::nullopt;
 }
 
@@ -723,33 +784,20 @@ class PlanarContact {
   }
 
   // The sign of q at the root of `defining` (or the exact time), narrowing
-  // the root as far as the sign needs: q's exact value at the interval's
-  // low end against how far q can drift across it; at the doubles' grid,
-  // a zero shared with `defining` (the gcd); nullopt past 2^-100.
+  // the root as far as the sign needs: q's value and slope against the
+  // interval (sign_by_slope), the remainder of two quadratics, then at the
+  // doubles' grid the remainder sequence in integers (sign_in_integers); nullopt
+  // where `defining` vanishes at an end of the interval.
   static std::optional<int> sign_at(const Polynomial4& q, const Polynomial4* defining, Root& root) {
-    if (root.exact || q.degree() < 1) return q.at(root.low_time()).sign();
-    constexpr double kMargin = 1 + 0x1p-30;  // covers the rounding of the bounds themselves
-    double slope = 0;  // |q'| on [0, 1] is at most |c1| + 2|c2| + ...
-    for (int i = 1; i < q.size; ++i) slope += i * std::fabs(q.c[i].estimate());
-    slope *= kMargin;
-    const auto settled = [&]() -> std::optional<int> {
-      const Value value = q.at(root.low_time());
-      if (root.exact || std::fabs(value.estimate()) > root.width() * slope * kMargin) return value.sign();
-      return std::nullopt;
-    };
-    if (const auto sign = settled()) return sign;
-    if (!root.fine())
-      if (const auto sign = sign_by_remainder(q, *defining, root)) return sign;
+    if (root.exact || q.degree() < 1) return q.at(root.low).sign();
+    if (const auto sign = sign_by_slope(q, root)) return sign;
+    if (const auto sign = sign_by_remainder(q, *defining, root)) return sign;
     for (const int bits : {kGridBits, kDoubleGridBits}) {
       narrow_to_grid(*defining, root, bits);
-      if (const auto sign = settled()) return sign;
+      if (root.exact) return q.at(root.low).sign();
+      if (const auto sign = sign_by_slope(q, root)) return sign;
     }
-    if (vanishes_at(as_integers(*defining), q, root) == true) return 0;
-    for (const int bits : kFinerGridBits) {
-      narrow_finer(*defining, root, bits);
-      if (const auto sign = settled()) return sign;
-    }
-    return std::nullopt;
+    return sign_in_integers(as_integers(*defining), q, root);
   }
 
   // The sign of q at the root of p in (root.low, root.high), both of degree
@@ -820,16 +868,11 @@ std::optional<ExactOutcome> solve(Kind kind, const Query& query, bool need_toi, 
     // From the doubles' grid on, numerators still unsettled are tested for
     // a zero at the root.
     std::optional<bool> touches = touches_at(kind, motion, root);
-    ZerosAtRoot zeros(kind, motion, cubic);
+    SignsAtRoot exact_signs(kind, motion, cubic);
     for (const int bits : {kGridBits, kDoubleGridBits}) {
       if (touches) break;
       narrow_to_grid(cubic, root, bits);
-      touches = touches_at(kind, motion, root, bits == kDoubleGridBits ? &zeros : nullptr);
-    }
-    for (const int bits : kFinerGridBits) {
-      if (touches) break;
-      narrow_finer(cubic, root, bits);
-      touches = touches_at(kind, motion, root, &zeros);
+      touches = touches_at(kind, motion, root, bits == kDoubleGridBits ? &exact_signs : nullptr);
     }
     if (!touches) return std::nullopt;
     if (!*touches) continue;

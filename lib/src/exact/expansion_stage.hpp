@@ -11,8 +11,8 @@
 // cover the generic case (the coplanarity cubic not identically zero, its
 // roots in (0, 1) at least 2^-40 apart) and planar motion in a plane
 // exact_plane_axis certifies (the orientations' roots likewise apart, or a
-// double root). A contact exactly on an edge or a corner is settled by a
-// zero test. Anything else (other motion with a vanishing cubic, clustered
+// double root). A contact exactly on an edge or a corner is settled by the
+// sign of a remainder sequence at the root. Anything else (other motion with a vanishing cubic, clustered
 // roots, a triangle flat or edges parallel at the contact, coordinates
 // spread over more than 2^80, a tmax off the 2^-100 grid) answers nullopt,
 // and the integers decide.

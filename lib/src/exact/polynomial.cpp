@@ -78,15 +78,19 @@ Integer content(const Polynomial& p) {
   return divisor;
 }
 
-// lc(b)^k a - q b for some k >= 0 and polynomial q, of degree below b's: the
-// remainder up to a constant factor, with integer coefficients.
+// |lc(b)|^k a - q b for some k >= 0 and polynomial q, of degree below b's:
+// the remainder times a positive constant, with integer coefficients (its
+// signs are the remainder's: what Sturm sequences need).
 Polynomial pseudo_remainder(Polynomial a, const Polynomial& b) {
   const int divisor_degree = b.degree();
+  const bool negative = b.leading().sign() < 0;
+  const Integer scale = negative ? -b.leading() : b.leading();
   while (!a.is_zero() && a.degree() >= divisor_degree) {
-    const Integer lead = a.leading();
+    const Integer lead = negative ? -a.leading() : a.leading();
     const std::size_t shift = static_cast<std::size_t>(a.degree() - divisor_degree);
-    for (Integer& c : a.coefficients) c *= b.leading();
-    for (std::size_t i = 0; i < b.coefficients.size(); ++i)
+    a.coefficients.pop_back();  // cancels: scale lead - lead lc(b) = 0
+    for (Integer& c : a.coefficients) c *= scale;
+    for (std::size_t i = 0; i + 1 < b.coefficients.size(); ++i)
       a.coefficients[i + shift].subtract_product(lead, b.coefficients[i]);
     a.trim();
   }
@@ -116,6 +120,32 @@ Polynomial greatest_common_divisor(const Polynomial& a, const Polynomial& b) {
     smaller = primitive_part(remainder);
   }
   return larger;
+}
+
+std::optional<int> sign_at_isolated_root(const Polynomial& defining, int sign_below, const Polynomial& p,
+                                         const Integer& low, const Integer& high, unsigned long exponent) {
+  // Sturm and Sylvester: with R = p mod defining (times a positive constant),
+  // the sign variations of the signed remainder sequence defining, R, ...
+  // lost from low to high count the Cauchy index of R / defining there,
+  // sign(R(r) defining'(r)) at its one root r, where defining' has the sign
+  // -sign_below. The index is 0 where R(r) = 0 (the pole cancels).
+  std::vector<Polynomial> sequence{defining, pseudo_remainder(p, defining)};
+  while (!sequence.back().is_zero())
+    sequence.push_back(-pseudo_remainder(sequence[sequence.size() - 2], sequence.back()));
+  const auto variations = [&](const Integer& t) -> std::optional<int> {
+    int count = 0, previous = 0;
+    for (const Polynomial& q : sequence) {
+      const int sign = sign_at_dyadic(q, t, exponent);
+      if (&q == &sequence.front() && sign == 0) return std::nullopt;
+      if (sign == 0) continue;
+      count += previous != 0 && sign != previous;
+      previous = sign;
+    }
+    return count;
+  };
+  const std::optional<int> at_low = variations(low), at_high = variations(high);
+  if (!at_low || !at_high) return std::nullopt;
+  return (*at_low - *at_high) * -sign_below;
 }
 
 bool divides(const Polynomial& b, const Polynomial& a) {

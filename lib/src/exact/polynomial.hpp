@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "exact/integer.hpp"
@@ -32,6 +33,13 @@ Polynomial derivative(const Polynomial& p);
 
 // The sign of p(numerator / 2^exponent), computed exactly.
 int sign_at_dyadic(const Polynomial& p, const Integer& numerator, unsigned long exponent);
+
+// The sign of p at the one root r of `defining` in the open interval
+// (low, high) 2^-exponent, a simple root, where defining has the sign
+// `sign_below` on (low, r); exact, zero included, with no narrowing.
+// nullopt when defining vanishes at an end.
+std::optional<int> sign_at_isolated_root(const Polynomial& defining, int sign_below, const Polynomial& p,
+                                         const Integer& low, const Integer& high, unsigned long exponent);
 
 // p divided by the gcd of its coefficients, leading coefficient positive.
 Polynomial primitive_part(const Polynomial& p);
