@@ -609,11 +609,13 @@ class SignsAtRoot {
 };
 
 // Whether the primitives touch at the root; nullopt when the signs do not
-// settle it at this width. Each numerator's sign comes from its estimate,
-// else from its exact value at the interval's low end, each against how
-// far it can drift over the interval; given exact signs, a numerator still
-// unsettled takes its sign at the root from them (a contact on the
-// boundary, or a numerator too small for the interval).
+// settle it at this width. Each numerator's sign comes from its estimate
+// against how far it can drift over the interval. Given exact signs (at
+// the doubles' grid), a numerator still unsettled is tried with its exact
+// value at the interval's low end against the same drift, then takes its
+// sign at the root from them (a contact on the boundary, or a numerator
+// too small for the interval); on coarser grids an exact value rarely beats
+// the drift, and narrowing costs less.
 std::optional<bool> touches_at(Kind kind, const Motion<Polynomial4>& motion, const Root& root,
                                SignsAtRoot* exact_signs = nullptr) {
   constexpr double kMargin = 1 + 0x1p-30;  // covers the rounding of the bounds themselves
@@ -632,7 +634,7 @@ std::optional<bool> touches_at(Kind kind, const Motion<Polynomial4>& motion, con
     const double drift = width * estimate.slope;
     if (std::fabs(estimate.value) > (estimate.error + drift) * kMargin + 0x1p-1000) {
       signs[k] = estimate.value > 0 ? 1 : -1;
-    } else if (root.exact || std::fabs(estimate.value) + estimate.error > drift * kMargin) {
+    } else if (root.exact || (exact_signs && std::fabs(estimate.value) + estimate.error > drift * kMargin)) {
       // The exact value may beat the drift.
       const Value value = exact_numerators()[k];
       if (root.exact || std::fabs(value.estimate()) > drift * kMargin) signs[k] = value.sign();
