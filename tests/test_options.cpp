@@ -306,12 +306,7 @@ TEST(PerCandidateSeparations, AllZerosAreTheCallWithoutASeparation) {
   const std::vector<double> zeros(queries.size(), 0.0);
   const auto expect_same_call = [](const BatchResult& listed, const BatchResult& plain, const std::string& what) {
     testing::expect_same_answers(listed, plain, what);
-    EXPECT_EQ(listed.counters.culled_by_swept_box, plain.counters.culled_by_swept_box) << what;
-    EXPECT_EQ(listed.counters.culled_by_sign, plain.counters.culled_by_sign) << what;
-    EXPECT_EQ(listed.counters.culled_by_separation, plain.counters.culled_by_separation) << what;
-    EXPECT_EQ(listed.counters.culled_by_pieces, plain.counters.culled_by_pieces) << what;
-    EXPECT_EQ(listed.counters.solved, plain.counters.solved) << what;
-    EXPECT_EQ(listed.counters.hits, plain.counters.hits) << what;
+    testing::expect_same_counts(listed, plain, what);
   };
   for (const lab::Method& method : {lab::kConservative, lab::kExact, lab::kFast}) {
     const Options plain_options = method.applied_to({});
