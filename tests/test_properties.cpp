@@ -736,15 +736,17 @@ TEST(PropertiesNearMiss, EdgePassingParallelIsAMiss) {
 
 TEST(PropertiesNearMiss, VertexJustOutsideIsAMiss) {
   Rng rng(0x9a2e0003);
-  const std::vector<Query> queries = certified_near_misses(
-      rng, Kind::vertex_face, 60, 8, 16, [&](int k) { return vertex_just_outside(rng, random_point_maker(rng, true), k); });
+  const std::vector<Query> queries = certified_near_misses(rng, Kind::vertex_face, 60, 8, 16, [&](int k) {
+    return vertex_just_outside(rng, random_point_maker(rng, true), k);
+  });
   for (const auto& [name, options] : near_miss_options()) expect_misses(Kind::vertex_face, queries, options, name);
 }
 
 TEST(PropertiesNearMiss, EdgeJustOutsideIsAMiss) {
   Rng rng(0x9a2e0004);
-  const std::vector<Query> queries = certified_near_misses(
-      rng, Kind::edge_edge, 60, 8, 16, [&](int k) { return edge_just_outside(rng, random_point_maker(rng, true), k); });
+  const std::vector<Query> queries = certified_near_misses(rng, Kind::edge_edge, 60, 8, 16, [&](int k) {
+    return edge_just_outside(rng, random_point_maker(rng, true), k);
+  });
   for (const auto& [name, options] : near_miss_options()) expect_misses(Kind::edge_edge, queries, options, name);
 }
 

@@ -615,7 +615,8 @@ class BodyReader {
 
   std::int64_t read_list_count(const Property& property) {
     const std::int64_t count = source_.read_integer(*property.list_count_type);
-    if (count < 0) source_.fail("negative list length " + std::to_string(count) + " in " + io_detail::printable(property.name));
+    if (count < 0)
+      source_.fail("negative list length " + std::to_string(count) + " in " + io_detail::printable(property.name));
     return count;
   }
 
