@@ -10,6 +10,7 @@
 #include <climits>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -84,9 +85,18 @@ ExpectedList expected_list(std::string_view text, std::size_t columns) {
       if (!id) {
         expected.bad_line = number;
         expected.bad_column = k + 1;
-        // Messages cut user text at 60 characters, and what() at a NUL.
-        const std::string_view quoted = fields[k].substr(0, 60);
-        expected.bad_field = std::string(quoted.substr(0, quoted.find('\0')));
+        // Messages cut user text at 60 bytes and write a control byte or
+        // DEL as \xHH.
+        for (const char c : fields[k].substr(0, 60)) {
+          const auto byte = static_cast<unsigned char>(c);
+          if (byte >= 0x20 && byte != 0x7f) {
+            expected.bad_field.push_back(c);
+          } else {
+            char escaped[5];
+            std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+            expected.bad_field += escaped;
+          }
+        }
         return expected;
       }
       row.push_back(*id);
@@ -109,6 +119,9 @@ void check_reader(Reader read, const std::filesystem::path& path, const Expected
     require(error.file() == path.string(), "the error names the file", name);
     require(error.line() == expected.bad_line, "the error names the first bad line", name);
     const std::string message = error.what();
+    require(std::none_of(message.begin(), message.end(),
+                         [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }),
+            "the error holds no control byte", name);
     if (expected.bad_column != 0) {
       require(message.find("column " + std::to_string(expected.bad_column) + ": ") != std::string::npos,
               "the error names the bad field's column", name);

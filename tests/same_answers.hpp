@@ -1,7 +1,8 @@
 #pragma once
 
 // Two batch results that must give every candidate the same answer, bit for
-// bit (another layout, another instruction set, a reused result).
+// bit (another layout, another instruction set, a reused result), and the
+// same counts where the work must be the same too.
 
 #include <cstddef>
 #include <string>
@@ -30,6 +31,19 @@ inline void expect_same_answers(const BatchResult& actual, const BatchResult& ex
                            << actual.results[first].hit << " toi " << actual.results[first].toi
                            << " where expected hit " << expected.results[first].hit << " toi "
                            << expected.results[first].toi;
+}
+
+// The same candidates, culled by the same filters, the same survivors and
+// hits: what no thread count, instruction set or equivalent call changes.
+inline void expect_same_counts(const BatchResult& actual, const BatchResult& expected, const std::string& what = "") {
+  EXPECT_EQ(actual.counters.candidates, expected.counters.candidates) << what;
+  EXPECT_EQ(actual.counters.culled, expected.counters.culled) << what;
+  EXPECT_EQ(actual.counters.culled_by_sign, expected.counters.culled_by_sign) << what;
+  EXPECT_EQ(actual.counters.culled_by_separation, expected.counters.culled_by_separation) << what;
+  EXPECT_EQ(actual.counters.culled_by_pieces, expected.counters.culled_by_pieces) << what;
+  EXPECT_EQ(actual.counters.culled_by_swept_box, expected.counters.culled_by_swept_box) << what;
+  EXPECT_EQ(actual.counters.solved, expected.counters.solved) << what;
+  EXPECT_EQ(actual.counters.hits, expected.counters.hits) << what;
 }
 
 }  // namespace batchccd::testing

@@ -22,6 +22,18 @@ inline void write_file(const fs::path& path, const std::string& content) {
   std::ofstream(path, std::ios::binary) << content;
 }
 
+// A one-triangle scene whose second edge-edge candidate names vertex 7 of
+// 3: read_scene refuses it at line 2 of ee.csv.
+inline void write_scene_with_an_out_of_range_candidate(const fs::path& scene) {
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  write_file(scene / "t0.ply", ply);
+  write_file(scene / "t1.ply", ply);
+  write_file(scene / "vf.csv", "0,0\n");
+  write_file(scene / "ee.csv", "0,1,1,2\n0,1,2,7\n");
+}
+
 inline std::string read_file(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};

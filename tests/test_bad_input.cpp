@@ -682,13 +682,7 @@ class BadInputFiles : public test_support::TemporaryDirectoryTest {
 };
 
 TEST_F(BadInputFiles, SceneWithAnOutOfRangeCandidateNamesItsLine) {
-  const std::string ply =
-      "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
-      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
-  write_file(path("scene/t0.ply"), ply);
-  write_file(path("scene/t1.ply"), ply);
-  write_file(path("scene/vf.csv"), "0,0\n");
-  write_file(path("scene/ee.csv"), "0,1,1,2\n0,1,2,7\n");  // vertex 7 of 3
+  test_support::write_scene_with_an_out_of_range_candidate(path("scene"));
   const auto error = error_of([&] { batchccd::read_scene(path("scene")); });
   ASSERT_TRUE(error);
   EXPECT_EQ(fs::path(error->file()).filename(), "ee.csv");

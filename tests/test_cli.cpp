@@ -30,6 +30,7 @@
 #include "batchccd/batchccd.hpp"
 #include "report_format.hpp"
 #include "run.hpp"
+#include "shared_data.hpp"
 
 namespace {
 
@@ -873,13 +874,7 @@ TEST_F(CliTest, BadSceneAmongGoodInputsCostsOnlyItsOwnResults) {
   write_file(path("vf/good.csv"),
              query_csv({{vertex_face_hit, true}, {vertex_face_miss, false}, {vertex_face_hit, true}}));
   write_file(path("ee/good.csv"), query_csv({{edge_edge_miss, false}, {edge_edge_hit, true}}));
-  const std::string ply =
-      "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
-      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
-  write_file(path("scene/t0.ply"), ply);
-  write_file(path("scene/t1.ply"), ply);
-  write_file(path("scene/vf.csv"), "0,0\n");
-  write_file(path("scene/ee.csv"), "0,1,1,2\n0,1,2,7\n");  // vertex 7 of 3
+  test_support::write_scene_with_an_out_of_range_candidate(path("scene"));
   write_file(path("results.txt"), "earlier results\n");
   const CliRun result =
       run_cli({"run", "--json", "--out", "results.txt", "vf/good.csv", "scene", "ee/good.csv"});
@@ -918,7 +913,7 @@ TEST_F(CliTest, EveryBadInputIsToldAndEveryGoodOneReported) {
 // The minimum-separation set (its README says how it is labelled): the tool
 // with --min-distance misses no contact in the certified modes.
 TEST_F(CliTest, SharedMinDistanceSetHasNoFalseNegatives) {
-  const fs::path data = fs::path(BATCHCCD_SHARED_DATA) / "min-distance" / "unit-ms1e-3";
+  const fs::path data = batchccd::testing::kSharedData / "min-distance" / "unit-ms1e-3";
   if (!fs::exists(data / "vf.csv") || !fs::exists(data / "ee.csv")) {
     GTEST_SKIP() << "no shared data at " << data;
   }
@@ -951,7 +946,7 @@ TEST_F(CliTest, SharedMinDistanceSetHasNoFalseNegatives) {
 // its stated separation without being told, and a touching scene never
 // scored at a separation it was not labelled for.
 TEST_F(CliTest, SharedDataIsScoredOnlyAtItsLabelledSeparation) {
-  const fs::path data = BATCHCCD_SHARED_DATA;
+  const fs::path& data = batchccd::testing::kSharedData;
   const fs::path set = data / "min-distance" / "unit-ms1e-3", scene = data / "scenes" / "cloth-funnel-227";
   if (!fs::exists(set / "ms.txt") || !fs::exists(scene / "vf_truth.txt")) GTEST_SKIP() << "no shared data at " << data;
   for (const char* mode : {"conservative", "exact"}) {
@@ -970,15 +965,10 @@ TEST_F(CliTest, SharedDataIsScoredOnlyAtItsLabelledSeparation) {
 // The tool's own path over the reference data (the library's is tested in
 // test_shared_data.cpp): every file found, read and counted against its truth.
 TEST(CliSharedData, SampleQueriesAndScenesRunWithTruth) {
-  const fs::path data = BATCHCCD_SHARED_DATA;
-  if (!fs::exists(data / "sample-queries") || !fs::exists(data / "scenes")) {
-    GTEST_SKIP() << "no shared data at " << data;
-  }
-  std::size_t query_files = 0, scenes = 0;
-  for (const auto& entry : fs::recursive_directory_iterator(data / "sample-queries"))
-    query_files += entry.path().extension() == ".csv" ? 1 : 0;
-  for (const auto& entry : fs::directory_iterator(data / "scenes"))
-    scenes += batchccd::is_scene_directory(entry.path()) ? 1 : 0;
+  const fs::path& data = batchccd::testing::kSharedData;
+  if (!batchccd::testing::shared_data_present()) GTEST_SKIP() << "no shared data at " << data;
+  const std::size_t query_files = batchccd::testing::shared_query_files().size();
+  const std::size_t scenes = batchccd::testing::shared_scene_directories().size();
   ASSERT_GT(query_files, 0u);
   ASSERT_GT(scenes, 0u);
 

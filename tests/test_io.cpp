@@ -726,6 +726,36 @@ TEST_F(IoTest, MalformedCandidateListsNameTheLine) {
   }
 }
 
+// A control byte inside a bad field (a NUL, an escape sequence, a bell) is
+// quoted as \xHH: a NUL would end what() before the rest of the message,
+// the others would reach the user's terminal.
+TEST_F(IoTest, ControlBytesInABadFieldAreEscaped) {
+  using namespace std::string_literals;
+  const auto expect_escaped = [&](auto read, const fs::path& path, long line, const std::string& problem) {
+    EXPECT_TRUE(fails_with(read, path, line, problem));
+    try {
+      read();
+    } catch (const InputError& error) {
+      const std::string_view message = error.what();
+      EXPECT_TRUE(message.ends_with(problem)) << message;
+      EXPECT_TRUE(std::none_of(message.begin(), message.end(),
+                               [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+          << message;
+    }
+  };
+  const fs::path ids = write("ids.csv", "1,2\n3,4\0x\n"s);
+  expect_escaped([&] { read_vertex_face_pairs(ids); }, ids, 2,
+                 R"(column 2: expected a non-negative integer, found '4\x00x')");
+  write("ids.csv", "1,2,3,4\n1,2,\x1b[31m3\x7f,4\n");
+  expect_escaped([&] { read_edge_edge_pairs(ids); }, ids, 2,
+                 R"(column 3: expected a non-negative integer, found '\x1b[31m3\x7f')");
+  const fs::path queries = write("q.csv", query_rows(1, true).replace(0, 1, "0\0"s));
+  expect_escaped([&] { read_query_csv(queries, Kind::vertex_face); }, queries, 1,
+                 R"(column 1: numerator '0\x00' is not a decimal integer)");
+  const fs::path truth = write("truth.txt", "0\n1\n\a\n");
+  expect_escaped([&] { read_truth(truth); }, truth, 3, R"(expected 0 or 1, found '\x07')");
+}
+
 // ------------------------------------------------------------------ scenes
 
 // t0.ply and t1.ply of a 4-vertex, 2-face mesh; t1 moves every vertex up by 1.
@@ -849,10 +879,8 @@ TEST_F(IoTest, NotASceneDirectory) {
 
 // ------------------------------------------------------------------ shared data
 
-const fs::path shared_data = BATCHCCD_SHARED_DATA;
-
 #define SKIP_WITHOUT_SHARED_DATA(sub) \
-  if (!fs::is_directory(shared_data / (sub))) GTEST_SKIP() << (shared_data / (sub)) << " absent"
+  if (!fs::is_directory(testing::kSharedData / (sub))) GTEST_SKIP() << (testing::kSharedData / (sub)) << " absent"
 
 TEST(SharedDataTest, EverySampleQueryFileReads) {
   SKIP_WITHOUT_SHARED_DATA("sample-queries");
@@ -872,7 +900,7 @@ TEST(SharedDataTest, EverySampleQueryFileReads) {
 
 TEST(SharedDataTest, ArmadilloSceneCounts) {
   SKIP_WITHOUT_SHARED_DATA("scenes/armadillo-rollers-326");
-  const Scene scene = read_scene(shared_data / "scenes/armadillo-rollers-326");
+  const Scene scene = read_scene(testing::kSharedData / "scenes/armadillo-rollers-326");
   EXPECT_EQ(scene.positions_t0.rows(), 12135);
   EXPECT_EQ(scene.positions_t1.rows(), 12135);
   EXPECT_EQ(scene.faces.rows(), 24242);

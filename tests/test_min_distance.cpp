@@ -21,6 +21,8 @@
 #include "exact/exact_solver.hpp"
 #include "exact/plane_axis.hpp"
 #include "exact_distance.hpp"
+#include "query_builders.hpp"
+#include "shared_data.hpp"
 
 namespace batchccd {
 namespace {
@@ -28,7 +30,6 @@ namespace {
 using testing::Rational;
 using testing::squared_distance_at;
 
-const std::filesystem::path kData = BATCHCCD_SHARED_DATA;
 constexpr Mode kCertified[] = {Mode::conservative, Mode::exact};
 
 Options with(Mode mode, double min_distance, double tmax = 1.0) {
@@ -497,24 +498,12 @@ TEST(MinDistance, MeshCandidatesOfEveryKind) {
   BatchResult out;
   mesh_ccd({x0, x1, faces}, candidates, MinDistances{.vertex_vertex = vertex_vertex_separations}, options, out);
   ASSERT_EQ(out.results.size(), 8u);
-  std::vector<std::pair<Kind, Query>> singles;
-  const auto row = [](const Eigen::MatrixXd& x, int v) { return Vec3(x.row(v)); };
-  for (const auto& [v, f] : candidates.vertex_face)
-    singles.push_back({Kind::vertex_face, Query{{row(x0, v), row(x0, faces(f, 0)), row(x0, faces(f, 1)), row(x0, faces(f, 2)),
-                                                 row(x1, v), row(x1, faces(f, 0)), row(x1, faces(f, 1)), row(x1, faces(f, 2))}}});
-  for (const auto& e : candidates.edge_edge)
-    singles.push_back({Kind::edge_edge, Query{{row(x0, e[0]), row(x0, e[1]), row(x0, e[2]), row(x0, e[3]), row(x1, e[0]),
-                                               row(x1, e[1]), row(x1, e[2]), row(x1, e[3])}}});
-  for (const auto& [v, a, b] : candidates.vertex_edge)
-    singles.push_back({Kind::vertex_edge, make_query(Kind::vertex_edge, std::vector{row(x0, v), row(x0, a), row(x0, b)},
-                                                     std::vector{row(x1, v), row(x1, a), row(x1, b)})});
-  for (const auto& [p, q] : candidates.vertex_vertex)
-    singles.push_back({Kind::vertex_vertex, make_query(Kind::vertex_vertex, std::vector{row(x0, p), row(x0, q)},
-                                                       std::vector{row(x1, p), row(x1, q)})});
+  const std::vector<testing::KindQuery> singles = testing::candidate_queries({x0, x1, faces}, candidates);
+  ASSERT_EQ(singles.size(), out.results.size());
   for (std::size_t i = 0; i < singles.size(); ++i) {
     Options single = options;
     if (i >= 6) single.min_distance = vertex_vertex_separations[i - 6];
-    const QueryResult alone = query_ccd(singles[i].first, singles[i].second, single);
+    const QueryResult alone = query_ccd(singles[i].kind, singles[i].query, single);
     EXPECT_EQ(out.results[i].hit, alone.hit) << i;
     EXPECT_EQ(out.results[i].toi, alone.toi) << i;
   }
@@ -529,7 +518,7 @@ TEST(MinDistance, MeshCandidatesOfEveryKind) {
 // conservative peer; its near misses are far from the separation, so both
 // certified modes must match every label.
 TEST(SharedMinDistanceData, CertifiedModesMatchEveryLabel) {
-  const std::filesystem::path directory = kData / "min-distance" / "unit-ms1e-3";
+  const std::filesystem::path directory = testing::kSharedData / "min-distance" / "unit-ms1e-3";
   if (!std::filesystem::exists(directory / "ms.txt")) GTEST_SKIP() << directory << " is absent";
   double separation = 0;
   std::ifstream(directory / "ms.txt") >> separation;

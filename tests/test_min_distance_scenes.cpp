@@ -21,6 +21,7 @@
 #include "batchccd/io.hpp"
 #include "broad_phase.hpp"
 #include "exact_distance.hpp"
+#include "shared_data.hpp"
 
 namespace batchccd {
 namespace {
@@ -29,7 +30,7 @@ using testing::Label;
 using testing::Labelled;
 using testing::label;
 
-const std::filesystem::path kScenes = std::filesystem::path(BATCHCCD_SHARED_DATA) / "scenes";
+const std::filesystem::path kScenes = testing::kSharedData / "scenes";
 
 double mean_edge_length(const Eigen::MatrixXd& positions, const Eigen::MatrixXi& faces) {
   const Eigen::MatrixXi edges = unique_edges(faces);

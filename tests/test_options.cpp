@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -286,6 +287,51 @@ TEST(MeshMinDistances, WrongLengthOrBadValueRefusesTheCall) {
   // Even for a list the options switch off.
   options.vertex_face = false;
   expect_refused({.vertex_face = two}, {"vertex-face min_distances", "2 values for 3 candidates"});
+}
+
+
+// Per-candidate separations of 0 for every candidate mean separation 0: the
+// same call as no list with Options::min_distance = 0 (a list replaces it),
+// the same answers, filters and counters, for the modes and the fast
+// baseline alike, raw queries and a mesh.
+TEST(PerCandidateSeparations, AllZerosAreTheCallWithoutASeparation) {
+  std::mt19937_64 rng(0x5e9a0);
+  std::uniform_real_distribution<double> coordinate(-1, 1), displacement(-0.6, 0.6);
+  std::vector<Query> queries(4096);
+  for (Query& q : queries)
+    for (int i = 0; i < 4; ++i) {
+      q.points[i] = Vec3(coordinate(rng), coordinate(rng), coordinate(rng));
+      q.points[i + 4] = q.points[i] + Vec3(displacement(rng), displacement(rng), displacement(rng));
+    }
+  const std::vector<double> zeros(queries.size(), 0.0);
+  const auto expect_same_call = [](const BatchResult& listed, const BatchResult& plain, const std::string& what) {
+    testing::expect_same_answers(listed, plain, what);
+    testing::expect_same_counts(listed, plain, what);
+  };
+  for (const lab::Method& method : {lab::kConservative, lab::kExact, lab::kFast}) {
+    const Options plain_options = method.applied_to({});
+    Options listed_options = plain_options;
+    listed_options.min_distance = 0.25;  // replaced by the list
+    for (const Kind kind : {Kind::vertex_face, Kind::edge_edge}) {
+      const std::string what = std::string(lab::to_string(method)) + ", " + to_string(kind);
+      BatchResult plain, listed;
+      lab::batch_ccd(kind, queries, {}, plain_options, method.settings(), plain);
+      lab::batch_ccd(kind, queries, zeros, listed_options, method.settings(), listed);
+      // The mix holds culls by the sign filter, survivors and hits.
+      EXPECT_GT(plain.counters.culled_by_sign, 0) << what;
+      EXPECT_GT(plain.counters.solved, 0) << what;
+      EXPECT_GT(plain.counters.hits, 0) << what;
+      expect_same_call(listed, plain, what);
+    }
+    const SmallMesh mesh;
+    const std::vector<double> vf(3, 0.0), ee(2, 0.0), ve(2, 0.0), vv(3, 0.0);
+    BatchResult plain, listed;
+    lab::mesh_ccd(mesh.view(), mesh.candidates, MinDistances{}, plain_options, method.settings(), plain);
+    lab::mesh_ccd(mesh.view(), mesh.candidates,
+                  MinDistances{.vertex_face = vf, .edge_edge = ee, .vertex_edge = ve, .vertex_vertex = vv},
+                  listed_options, method.settings(), listed);
+    expect_same_call(listed, plain, std::string(lab::to_string(method)) + ", mesh");
+  }
 }
 
 }  // namespace

@@ -18,8 +18,10 @@
 #include "exact/exact_solver.hpp"
 #include "exact/plane_axis.hpp"
 #include "exact_distance.hpp"
+#include "query_builders.hpp"
 #include "reference/planar_solver.hpp"
 #include "reference/scaled_query.hpp"
+#include "shared_data.hpp"
 
 namespace batchccd {
 namespace {
@@ -77,11 +79,6 @@ class PlanarGenerator {
   std::mt19937_64 random_;
   std::uniform_int_distribution<int> integer_{-(1 << 16), 1 << 16};
 };
-
-Query scaled_by(Query query, double factor) {
-  for (Vec3& point : query.points) point *= factor;
-  return query;
-}
 
 // The exact stage alone: hit, and its TOI (within 2^-40 below the first contact).
 exact::ExactOutcome truth(Kind kind, const Query& query, double tmax = 1) {
@@ -245,8 +242,8 @@ TEST(PlanarCases, VertexFaceEvents) {
     for (const Query& query : cases) {
       expect_exact_answers(Kind::vertex_face, query);
       expect_exact_answers(Kind::vertex_face, query, 0.5);
-      expect_exact_answers(Kind::vertex_face, scaled_by(query, 0x1p-400));
-      expect_exact_answers(Kind::vertex_face, scaled_by(query, 0x1p400));
+      expect_exact_answers(Kind::vertex_face, testing::scaled(query, -400));
+      expect_exact_answers(Kind::vertex_face, testing::scaled(query, 400));
     }
   }
 }
@@ -267,7 +264,7 @@ TEST(PlanarCases, EdgeEdgeEvents) {
     for (const Query& query : cases) {
       expect_exact_answers(Kind::edge_edge, query);
       expect_exact_answers(Kind::edge_edge, query, 0.75);
-      expect_exact_answers(Kind::edge_edge, scaled_by(query, 0x1p-400));
+      expect_exact_answers(Kind::edge_edge, testing::scaled(query, -400));
     }
   }
 }
@@ -416,7 +413,7 @@ TEST(PlanarWithin, ScaleInvariant) {
     for (int exponent : {-400, 400}) {
       Options scaled = options;
       scaled.min_distance = std::ldexp(options.min_distance, exponent);
-      const QueryResult result = query_ccd(kind, scaled_by(query, std::ldexp(1.0, exponent)), scaled);
+      const QueryResult result = query_ccd(kind, testing::scaled(query, exponent), scaled);
       EXPECT_EQ(result.hit, unit.hit);
       EXPECT_EQ(result.toi, unit.toi);
     }
@@ -657,7 +654,7 @@ TEST(Queries2D, MakeQueryAndBadInput) {
 // The shared data's coplanar-motion queries (planar/), in every mode, and the
 // lanes against the scalar path: identical answers.
 TEST(PlanarSharedData, ZeroWrongDecisionsAndLanesMatchScalar) {
-  const std::filesystem::path root = std::filesystem::path(BATCHCCD_SHARED_DATA) / "planar";
+  const std::filesystem::path root = testing::kSharedData / "planar";
   if (!std::filesystem::is_directory(root)) GTEST_SKIP() << root << " is absent";
   int files = 0;
   for (const char* plane : {"z0", "z075"})

@@ -9,16 +9,23 @@
 //   description of it (axes permuted or flipped, translated, time reversed,
 //   triangle vertices or edge endpoints reordered). A query whose primitives
 //   stay clearly apart keeps missing under the same transforms.
+// - Near misses the filters leave to the search over (u, v) (certified
+//   apart far above tolerance) are misses, with the default options, the
+//   decision alone and coarse TOIs; at a separation, edges that only that
+//   search tells apart are a decided miss, and within it a decided hit.
 // - Nothing breaks on extreme finite input (1e-300 .. 1e300), in any mode.
 // - NaN or infinite coordinates give Status::invalid_input with hit == true.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <limits>
 #include <random>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -519,6 +526,309 @@ TEST(PropertiesEquivalence, VertexFaceClearMissesStayMisses) {
 
 TEST(PropertiesEquivalence, EdgeEdgeClearMissesStayMisses) {
   check_equivalent_misses(Kind::edge_edge, 0xe9a1004);
+}
+
+// ---------------------------------------------------------------------------
+// Near misses that reach the search over (u, v). The clear misses above are
+// decided before it (the lane filters, the cubic's signs, the inside and
+// outside tests over a time interval); these keep the cubic's signs
+// uncertain or the inside tests undecided down to narrow time intervals, so
+// that the boxes' exclusion, their error bound and the width called within
+// tolerance decide them. Their gaps lie far above `tolerance`: conservative
+// mode must report every one a miss.
+
+// A random point of the plane z = 0 (of the kind `point` makes).
+Vec3 planar_point(Rng& rng, const PointMaker& point) {
+  PointMaker planar = point;
+  planar.planar = true;
+  return planar(rng);
+}
+
+// One of the 48 exact rotations and reflections of the axes, at random.
+Query axes_shuffled(Rng& rng, const Query& q) {
+  std::array<int, 3> axes = {0, 1, 2};
+  std::shuffle(axes.begin(), axes.end(), rng);
+  return batchccd_testing::axes_flipped(batchccd_testing::axes_permuted(q, axes), uniform_int(rng, 0, 7));
+}
+
+// The middle of one of the four pieces the lane filters cut the step into:
+// a closest approach there keeps the cubic's Bernstein signs mixed over
+// its piece.
+double random_piece_middle(Rng& rng) { return (2 * uniform_int(rng, 0, 3) + 1) / 8.0; }
+
+// A vertex touching a tilting triangle's edge at t0 (random_piece_middle),
+// to be raised by a gap (raised below): a and b still in z = 0, c falling
+// through it (its height 2 k (t0 - t)), the vertex in z = 0 moving across
+// edge ab towards c. Once raised by `gap` it stays above the triangle's
+// plane (its height there is gap + 2 k mu (t - t0)^2, mu > 0 the rate at
+// which its barycentric coordinate of c grows) and is outside the
+// triangle before t0: the cubic has no root, but its signs stay mixed over
+// intervals around t0 wider than about sqrt(gap).
+Query vertex_grazing_an_edge(Rng& rng, const PointMaker& point) {
+  for (;;) {
+    const Vec3 a = planar_point(rng, point), b = planar_point(rng, point), c = planar_point(rng, point);
+    if ((b - a).cross(c - a).z() == 0) continue;  // a triangle, not a segment
+    const double t0 = random_piece_middle(rng);
+    const Vec3 fall(0, 0, std::ldexp(2.0, -uniform_int(rng, 0, 2)));
+    const Vec3 e = a + uniform_int(rng, 1, 15) / 16.0 * (b - a);  // on edge ab
+    const Vec3 velocity = std::ldexp(1.0, -uniform_int(rng, 0, 2)) * (c - e) + uniform_int(rng, -2, 2) / 8.0 * (b - a);
+    return {{e - t0 * velocity, a, b, c + t0 * fall, e + (1 - t0) * velocity, a, b, c - (1 - t0) * fall}};
+  }
+}
+
+// A point of the plane x + y + z = 0 (no axis plane: the swept boxes of
+// two such parallel planes overlap).
+Vec3 tilted_point(Rng& rng, const PointMaker& point) {
+  const Vec3 p = planar_point(rng, point);
+  return {p.x(), p.y(), -p.x() - p.y()};
+}
+
+// Edge b turning through parallel to edge a at t0 (random_piece_middle)
+// while they overlap, both in the plane x + y + z = 0 and carried by one
+// translation, to be raised by a gap (raised below). Once raised, b lies
+// in a parallel plane gap / sqrt(3) from a's throughout; the cubic's root
+// at t0 is where neither inside test can decide.
+Query edge_passing_parallel(Rng& rng, const PointMaker& point) {
+  for (;;) {
+    const Vec3 a0 = tilted_point(rng, point), a1 = tilted_point(rng, point);
+    const Vec3 turn = std::ldexp(1.0, -uniform_int(rng, 0, 2)) * tilted_point(rng, point);
+    if (a0 == a1 || (a1 - a0).cross(turn) == Vec3::Zero()) continue;  // b must turn through parallel
+    const double t0 = random_piece_middle(rng);
+    const Vec3 shift = uniform_int(rng, -4, 4) / 8.0 * (a1 - a0);
+    const Vec3 b0 = a0 + shift, b1 = a1 + shift;  // at t0
+    const Vec3 carried = coin(rng) ? point(rng) : Vec3::Zero();
+    return {{a0, a1, b0 - t0 * turn, b1 + t0 * turn, a0 + carried, a1 + carried,
+             b0 + (1 - t0) * turn + carried, b1 - (1 - t0) * turn + carried}};
+  }
+}
+
+// Whether the lane filters leave `q` to the solver.
+bool reaches_the_solver(Kind kind, const Query& q, const Options& options = {}) {
+  return lab::batch_ccd(kind, std::vector{q}, options, {}).counters.solved == 1;
+}
+
+// A time that is no halving point of [0, 1]: a root there leaves the
+// cubic's signs to narrow it (at a halving point one of them is zero).
+double crossing_time(Rng& rng) { return uniform(rng, 0.1, 0.9); }
+
+// The velocity, relative to primitives carried by one translation, of a
+// primitive that is at `target` at the crossing time, beside their plane
+// of normal `normal`: it comes from the side of `towards` and off the
+// plane (so that in projection it passes over the other primitive, and no
+// projection proves the miss) and goes on through the plane.
+Vec3 crossing_velocity(Rng& rng, const Vec3& target, const Vec3& towards, const Vec3& normal) {
+  const Vec3 inward = towards - target;
+  return -uniform(rng, 0.5, 2) * inward - uniform(rng, 0.2, 1) * inward.norm() * normal.normalized();
+}
+
+// A vertex crossing a translating triangle's plane at a random time just
+// outside it, at barycentric (u, v) with v = -2^-k, or u = -2^-k, or
+// u + v = 1 + 2^-k, having come from over the triangle. The cubic has a
+// certain root there; only the outside tests and the search tell the miss.
+Query vertex_just_outside(Rng& rng, const PointMaker& point, int k) {
+  for (;;) {
+    const Vec3 a0 = point(rng), b0 = point(rng), c0 = point(rng);
+    const Vec3 carried = coin(rng) ? point(rng) : Vec3::Zero();
+    const double t = crossing_time(rng);
+    const Vec3 a = a0 + t * carried, b = b0 + t * carried, c = c0 + t * carried;
+    const Vec3 normal = (b - a).cross(c - a);
+    if (normal == Vec3::Zero()) continue;
+    const double along = uniform_int(rng, 1, 15) / 16.0, out = std::ldexp(1.0, -k);
+    double u = along, v = -out;
+    if (const int side = uniform_int(rng, 0, 2); side == 1) {
+      u = -out;
+      v = along;
+    } else if (side == 2) {
+      v = 1 + out - along;
+    }
+    const Vec3 target = a + u * (b - a) + v * (c - a);
+    const Vec3 velocity = carried + crossing_velocity(rng, target, (a + b + c) / 3, normal);
+    return {{target - t * velocity, a0, b0, c0, target + (1 - t) * velocity, a0 + carried, b0 + carried,
+             c0 + carried}};
+  }
+}
+
+// Edge b, translating, crossing edge a's line at a random time about 2^-k
+// of a's length beyond one of its ends, having come from over a.
+Query edge_just_outside(Rng& rng, const PointMaker& point, int k) {
+  for (;;) {
+    const Vec3 a0 = point(rng), a1 = point(rng), direction = point(rng);
+    const Vec3 carried = coin(rng) ? point(rng) : Vec3::Zero();
+    const double t = crossing_time(rng);
+    const Vec3 ea0 = a0 + t * carried, ea1 = a1 + t * carried;
+    const Vec3 normal = (ea1 - ea0).cross(direction);
+    if (normal == Vec3::Zero()) continue;
+    const double out = std::ldexp(1.0, -k), u = coin(rng) ? -out : 1 + out;
+    const Vec3 target = ea0 + u * (ea1 - ea0);  // b's first end at t
+    const Vec3 velocity = carried + crossing_velocity(rng, target, 0.5 * (ea0 + ea1), normal);
+    const Vec3 b0 = target - t * velocity, b1 = target + (1 - t) * velocity;
+    return {{a0, a1, b0, b0 + direction, a0 + carried, a1 + carried, b1, b1 + direction}};
+  }
+}
+
+// `count` queries from `make(k)` (k in [low, high]), each in a random
+// orientation, that reach the solver and are certified to stay more than
+// 2^-(k+3) of their size apart, far above tolerance.
+template <class Make>
+std::vector<Query> certified_near_misses(Rng& rng, Kind kind, int count, int low, int high, Make make) {
+  std::vector<Query> found;
+  while (static_cast<int>(found.size()) < count) {
+    const int k = uniform_int(rng, low, high);
+    const Query q = axes_shuffled(rng, make(k));
+    const double apart = std::ldexp(batchccd_testing::query_size(q), -k - 3);
+    if (reaches_the_solver(kind, q) && batchccd_testing::label(kind, q, apart).label == batchccd_testing::Label::miss)
+      found.push_back(q);
+  }
+  return found;
+}
+
+// The query with `points` (at both ends) moved up by 2^-k of its size: an
+// exact sum for grid points and k <= 20.
+Query raised(const Query& q, std::initializer_list<int> points, int k) {
+  Query out = q;
+  const double gap = std::ldexp(1.0, std::ilogb(batchccd_testing::query_size(q)) - k);
+  for (int index : points) out.points[index].z() += gap;
+  return out;
+}
+
+// Every one of `queries` must be a miss in conservative mode with `options`.
+void expect_misses(Kind kind, const std::vector<Query>& queries, const Options& options, const std::string& what) {
+  const batchccd::BatchResult batch = lab::batch_ccd(kind, queries, options, {});
+  EXPECT_EQ(batch.counters.undecided, 0) << what;
+  for (std::size_t i = 0; i < queries.size(); ++i)
+    EXPECT_FALSE(batch.results[i].hit) << what << ": a near miss reported a contact at toi "
+                                       << batch.results[i].toi << ": " << describe(kind, queries[i]);
+}
+
+// Options a user sets for a near miss: the defaults, the decision alone
+// (need_toi = false: any interval the search calls within tolerance
+// settles the query), a coarse TOI.
+std::vector<std::pair<std::string, Options>> near_miss_options() {
+  Options decision_only;
+  decision_only.need_toi = false;
+  std::vector<std::pair<std::string, Options>> all = {{"defaults", Options{}}, {"need_toi = false", decision_only}};
+  for (const int k : {6, 8, 10}) {
+    Options coarse_toi;
+    coarse_toi.toi_tolerance = std::ldexp(1.0, -k);
+    all.push_back({"toi_tolerance = 2^-" + std::to_string(k), coarse_toi});
+  }
+  return all;
+}
+
+TEST(PropertiesNearMiss, VertexGrazingAnEdgeIsAMiss) {
+  Rng rng(0x9a2e0001);
+  const std::vector<Query> queries = certified_near_misses(rng, Kind::vertex_face, 40, 6, 16, [&](int k) {
+    return raised(vertex_grazing_an_edge(rng, random_point_maker(rng, true)), {0, 4}, k);
+  });
+  for (const auto& [name, options] : near_miss_options()) expect_misses(Kind::vertex_face, queries, options, name);
+}
+
+TEST(PropertiesNearMiss, EdgePassingParallelIsAMiss) {
+  Rng rng(0x9a2e0002);
+  std::vector<Query> queries;
+  while (queries.size() < 60) {
+    const Query built = edge_passing_parallel(rng, random_point_maker(rng, true));
+    const Query q = axes_shuffled(rng, raised(built, {2, 3, 6, 7}, uniform_int(rng, 6, 20)));
+    if (reaches_the_solver(Kind::edge_edge, q)) queries.push_back(q);
+  }
+  for (const auto& [name, options] : near_miss_options()) expect_misses(Kind::edge_edge, queries, options, name);
+}
+
+TEST(PropertiesNearMiss, VertexJustOutsideIsAMiss) {
+  Rng rng(0x9a2e0003);
+  const std::vector<Query> queries = certified_near_misses(rng, Kind::vertex_face, 60, 8, 16, [&](int k) {
+    return vertex_just_outside(rng, random_point_maker(rng, true), k);
+  });
+  for (const auto& [name, options] : near_miss_options()) expect_misses(Kind::vertex_face, queries, options, name);
+}
+
+TEST(PropertiesNearMiss, EdgeJustOutsideIsAMiss) {
+  Rng rng(0x9a2e0004);
+  const std::vector<Query> queries = certified_near_misses(rng, Kind::edge_edge, 60, 8, 16, [&](int k) {
+    return edge_just_outside(rng, random_point_maker(rng, true), k);
+  });
+  for (const auto& [name, options] : near_miss_options()) expect_misses(Kind::edge_edge, queries, options, name);
+}
+
+// Edge b turning about its middle in the plane x = 1/2, `height` above
+// edge a's line, while a (on the x axis, still) ends `short_of` before that
+// plane: b's line comes within `height` of a's, but beyond a's end, and
+// the edges stay sqrt(short_of^2 + height^2 / (1 + slope^2)) apart, closest
+// at a's end. No fixed direction separates them throughout, neither does
+// the lines' distance: at a separation above `height` only the search over
+// (u, v) proves a miss, or witnesses a contact.
+Query edge_turning_past_an_end(double short_of, double height, double slope, double half_length) {
+  const double x = 0.5, end = x - short_of, rise = half_length * slope;
+  return {{Vec3(0, 0, 0), Vec3(end, 0, 0), Vec3(x, -half_length, height + rise), Vec3(x, half_length, height - rise),
+           Vec3(0, 0, 0), Vec3(end, 0, 0), Vec3(x, -half_length, height - rise),
+           Vec3(x, half_length, height + rise)}};
+}
+
+struct AtASeparation {
+  Query query;
+  double separation;
+};
+
+// edge_turning_past_an_end at a random separation, scale and orientation,
+// its height in [low, high] times the separation and its closest approach
+// `apart` times it.
+AtASeparation random_edges_turning(Rng& rng, double low, double high, double apart) {
+  const double separation = std::ldexp(1.0, -uniform_int(rng, 5, 8));
+  const double height = uniform(rng, low, high), slope = uniform(rng, 0.5, 2);
+  const double short_of = std::sqrt(apart * apart - height * height / (1 + slope * slope));
+  const int exponent = uniform_int(rng, -20, 20);
+  const Query built = edge_turning_past_an_end(short_of * separation, height * separation, slope, uniform(rng, 0.5, 1));
+  return {axes_shuffled(rng, batchccd_testing::scaled(built, exponent)), std::ldexp(separation, exponent)};
+}
+
+// At a separation the search over (u, v) has no exact stage behind it.
+// Edges whose lines come within the separation while they stay 1.05 times
+// it apart (certified beyond 1.02 times) are a miss, decided (not an
+// undecided hit), in both certified modes, with need_toi or without.
+TEST(PropertiesNearMiss, EdgesTurningPastAnEndAtASeparationAreADecidedMiss) {
+  Rng rng(0x9a2e0005);
+  for (int checked = 0; checked < 16;) {
+    const auto [q, separation] = random_edges_turning(rng, 0.5, 0.9, std::sqrt(1.1));
+    Options options;
+    options.min_distance = separation;
+    if (!reaches_the_solver(Kind::edge_edge, q, options) ||
+        batchccd_testing::label(Kind::edge_edge, q, 1.02 * separation).label != batchccd_testing::Label::miss)
+      continue;
+    ++checked;
+    for (const Mode mode : {Mode::conservative, Mode::exact})
+      for (const bool need_toi : {true, false}) {
+        options.mode = mode;
+        options.need_toi = need_toi;
+        const std::string what = std::string(batchccd::to_string(mode)) + (need_toi ? "" : ", need_toi = false") +
+                                 ", min_distance " + std::to_string(separation) + ": " + describe(Kind::edge_edge, q);
+        const batchccd::BatchResult batch = lab::batch_ccd(Kind::edge_edge, std::vector{q}, options, {});
+        EXPECT_FALSE(batch.results[0].hit) << what;
+        EXPECT_EQ(batch.counters.undecided, 0) << what;
+      }
+  }
+}
+
+// The same edges at half the separation: a hit, decided by a certified
+// witness (not an undecided one), no later than the exact labels' witness.
+TEST(PropertiesNearMiss, EdgesTurningPastAnEndWithinTheSeparationAreADecidedHit) {
+  Rng rng(0x9a2e0006);
+  for (int checked = 0; checked < 24;) {
+    const auto [q, separation] = random_edges_turning(rng, 0.2, 0.45, 0.5);
+    const batchccd_testing::Labelled truth = batchccd_testing::label(Kind::edge_edge, q, separation);
+    if (truth.label != batchccd_testing::Label::hit) continue;
+    ++checked;
+    for (const Mode mode : {Mode::conservative, Mode::exact}) {
+      Options options;
+      options.mode = mode;
+      options.min_distance = separation;
+      const std::string what = std::string(batchccd::to_string(mode)) + ", min_distance " +
+                               std::to_string(separation) + ": " + describe(Kind::edge_edge, q);
+      const batchccd::BatchResult batch = lab::batch_ccd(Kind::edge_edge, std::vector{q}, options, {});
+      EXPECT_TRUE(batch.results[0].hit) << what;
+      EXPECT_LE(batch.results[0].toi, truth.witness) << what;
+      EXPECT_EQ(batch.counters.undecided, 0) << what;
+    }
+  }
 }
 
 // ---------------------------------------------------------------------------

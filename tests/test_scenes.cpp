@@ -21,6 +21,7 @@
 #include "broad_phase.hpp"
 #include "scene_writer.hpp"
 #include "scenes.hpp"
+#include "shared_data.hpp"
 #include "temporary_directory.hpp"
 
 namespace batchccd {
@@ -185,13 +186,11 @@ TEST(BroadPhase, RejectsBadInput) {
 // Every candidate of the shared scenes has overlapping swept boxes (their
 // README), so the dense list with no margin holds them all.
 TEST(BroadPhase, ContainsTheCandidatesOfTheSharedScenes) {
-  const fs::path scenes_directory = fs::path(BATCHCCD_SHARED_DATA) / "scenes";
-  if (!fs::is_directory(scenes_directory)) GTEST_SKIP() << scenes_directory << " is absent";
+  if (!testing::shared_data_present()) GTEST_SKIP() << testing::kSharedData << " is absent";
   int scenes_read = 0;
-  for (const auto& entry : fs::directory_iterator(scenes_directory)) {
-    if (!is_scene_directory(entry.path())) continue;
-    SCOPED_TRACE(entry.path().string());
-    const Scene scene = read_scene(entry.path());
+  for (const fs::path& directory : testing::shared_scene_directories()) {
+    SCOPED_TRACE(directory.string());
+    const Scene scene = read_scene(directory);
     const MeshView mesh{scene.positions_t0, scene.positions_t1, scene.faces};
     const Candidates dense = scenes::swept_box_candidates(mesh, 0.0);
     for (const auto& candidate : scene.candidates.vertex_face)

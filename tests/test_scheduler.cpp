@@ -14,6 +14,7 @@
 #include "batchccd/lab.hpp"
 #include "scenes.hpp"
 #include "broad_phase.hpp"
+#include "same_answers.hpp"
 #include "shared_data.hpp"
 
 namespace batchccd {
@@ -44,19 +45,9 @@ std::vector<MeshCase> mesh_cases() {
 }
 
 void expect_identical(const BatchResult& a, const BatchResult& b, const std::string& what) {
-  ASSERT_EQ(a.results.size(), b.results.size()) << what;
-  for (std::size_t i = 0; i < a.results.size(); ++i) {
-    ASSERT_EQ(a.results[i].hit, b.results[i].hit) << what << " candidate " << i;
-    ASSERT_EQ(a.results[i].toi, b.results[i].toi) << what << " candidate " << i;
-  }
+  testing::expect_same_answers(a, b, what);
   EXPECT_EQ(a.earliest_toi, b.earliest_toi) << what;
-  EXPECT_EQ(a.counters.candidates, b.counters.candidates) << what;
-  EXPECT_EQ(a.counters.culled, b.counters.culled) << what;
-  EXPECT_EQ(a.counters.culled_by_sign, b.counters.culled_by_sign) << what;
-  EXPECT_EQ(a.counters.culled_by_separation, b.counters.culled_by_separation) << what;
-  EXPECT_EQ(a.counters.culled_by_pieces, b.counters.culled_by_pieces) << what;
-  EXPECT_EQ(a.counters.culled_by_swept_box, b.counters.culled_by_swept_box) << what;
-  EXPECT_EQ(a.counters.hits, b.counters.hits) << what;
+  testing::expect_same_counts(a, b, what);
 }
 
 TEST(Scheduler, ResultsDoNotDependOnTheThreadCount) {

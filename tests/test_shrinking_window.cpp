@@ -16,40 +16,15 @@
 #include "batchccd/batchccd.hpp"
 #include "broad_phase.hpp"
 #include "ipc_rules.hpp"
+#include "query_builders.hpp"
 #include "scenes.hpp"
 #include "scheduler/shrinking_window.hpp"
 
 namespace batchccd {
 namespace {
 
-struct KindQuery {
-  Kind kind;
-  Query query;
-};
-
-// Every candidate of a mesh as the query it names, in mesh_ccd's order.
-std::vector<KindQuery> queries_of(const MeshView& mesh, const CandidateLists& candidates) {
-  const auto at = [&](const PositionsView& positions, int v) {
-    Vec3 point = Vec3::Zero();
-    for (int c = 0; c < positions.cols(); ++c) point[c] = positions(v, c);
-    return point;
-  };
-  const auto query = [&](Kind kind, std::initializer_list<int> ids) {
-    std::vector<Vec3> t0, t1;
-    for (const int v : ids) {
-      t0.push_back(at(mesh.positions_t0, v));
-      t1.push_back(at(mesh.positions_t1, v));
-    }
-    return KindQuery{kind, make_query(kind, t0, t1)};
-  };
-  std::vector<KindQuery> all;
-  for (const auto& [v, f] : candidates.vertex_face)
-    all.push_back(query(Kind::vertex_face, {v, mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2)}));
-  for (const auto& [a0, a1, b0, b1] : candidates.edge_edge) all.push_back(query(Kind::edge_edge, {a0, a1, b0, b1}));
-  for (const auto& [p, e0, e1] : candidates.vertex_edge) all.push_back(query(Kind::vertex_edge, {p, e0, e1}));
-  for (const auto& [p, q] : candidates.vertex_vertex) all.push_back(query(Kind::vertex_vertex, {p, q}));
-  return all;
-}
+using testing::candidate_queries;
+using testing::KindQuery;
 
 struct SceneCase {
   std::string name;
@@ -108,7 +83,7 @@ std::vector<T> spread(const std::vector<T>& items, std::size_t count) {
 TEST(ShrinkingWindow, AHitsToiDoesNotDependOnTmaxAboveIt) {
   int checked = 0, within = 0;
   for (const SceneCase& scene : scene_cases()) {
-    const std::vector<KindQuery> queries = queries_of(scene.mesh.view(), scene.candidates);
+    const std::vector<KindQuery> queries = candidate_queries(scene.mesh.view(), scene.candidates);
     for (const Mode mode : {Mode::conservative, Mode::exact})
       for (const double separation : {0.0, 1e-3 * scene.edge_length, 1e-2 * scene.edge_length}) {
         Options options;
@@ -155,7 +130,7 @@ TEST(ShrinkingWindow, AHitsToiDoesNotDependOnTmaxAboveIt) {
 TEST(ShrinkingWindow, AnIpcStepDoesNotDependOnTmaxAboveIt) {
   int checked = 0;
   for (const SceneCase& scene : scene_cases()) {
-    const std::vector<KindQuery> queries = queries_of(scene.mesh.view(), scene.candidates);
+    const std::vector<KindQuery> queries = candidate_queries(scene.mesh.view(), scene.candidates);
     for (const double separation : {0.0, 1e-3 * scene.edge_length}) {
       const auto decide = [&](const KindQuery& q, double tmax, double& toi) {
         return ipc::rules::decide(q.kind, q.query, toi, separation, tmax, ipc::DEFAULT_CCD_TOLERANCE,
@@ -191,7 +166,7 @@ TEST(ShrinkingWindow, ARescaledStepBelowTheWindowIsNotLost) {
   const std::vector<std::array<int, 2>> vertex_face{{3, 0}, {4, 0}};
   const MeshView mesh{x0, x1, faces};
   std::vector<double> steps;
-  for (const KindQuery& q : queries_of(mesh, {.vertex_face = vertex_face})) {
+  for (const KindQuery& q : candidate_queries(mesh, {.vertex_face = vertex_face})) {
     double toi = 1;
     ASSERT_TRUE(ipc::rules::decide(q.kind, q.query, toi, 0.0, 1.0, ipc::DEFAULT_CCD_TOLERANCE,
                                    ipc::DEFAULT_CCD_MAX_ITERATIONS, ipc::DEFAULT_CCD_CONSERVATIVE_RESCALING));

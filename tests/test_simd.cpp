@@ -487,11 +487,7 @@ TEST(SimdKernels, FinalDecisionsAreIdenticalOnSharedData) {
   if (kernels.empty()) GTEST_SKIP() << "no vector instruction set on this processor";
   auto same = [](const BatchResult& a, const BatchResult& b, const std::string& what) {
     testing::expect_same_answers(b, a, what);
-    EXPECT_EQ(a.counters.culled, b.counters.culled) << what;
-    EXPECT_EQ(a.counters.culled_by_sign, b.counters.culled_by_sign) << what;
-    EXPECT_EQ(a.counters.culled_by_separation, b.counters.culled_by_separation) << what;
-    EXPECT_EQ(a.counters.culled_by_pieces, b.counters.culled_by_pieces) << what;
-    EXPECT_EQ(a.counters.culled_by_swept_box, b.counters.culled_by_swept_box) << what;
+    testing::expect_same_counts(b, a, what);
   };
   for (const simd::FilterKernels* k : kernels) {
     std::size_t inputs = 0;

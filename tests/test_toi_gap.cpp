@@ -57,17 +57,6 @@ Tois measure(const std::string& name, Kind kind, const Query& query) {
   return tois;
 }
 
-// The query's size as the promise measures it in the worst case: its
-// largest coordinate difference from the first point over the whole step.
-double query_size(Kind kind, const Query& query) {
-  const int first = kind == Kind::vertex_face ? 1 : 0;
-  double size = 0;
-  for (int tau = 0; tau < 2; ++tau)
-    for (int i = 0; i < 4; ++i)
-      size = std::max(size, (query.points[4 * tau + i] - query.points[4 * tau + first]).cwiseAbs().maxCoeff());
-  return size;
-}
-
 // The promise on one hit: never after the first contact; at most
 // toi_tolerance before it, or the primitives within (about) tolerance of
 // each other at the reported TOI.
@@ -77,7 +66,7 @@ void expect_promised_toi(Kind kind, const Query& query, const Tois& tois) {
   EXPECT_LE(tois.conservative.toi, tois.exact.toi + kExactToiWidth);
   if (tois.exact.toi - tois.conservative.toi > Options{}.toi_tolerance) {
     const double distance = std::sqrt(squared_distance(kind, query, tois.conservative.toi));
-    EXPECT_LE(distance, 4 * Options{}.tolerance * query_size(kind, query))
+    EXPECT_LE(distance, 4 * Options{}.tolerance * testing::query_size(query))
         << "a TOI " << tois.exact.toi - tois.conservative.toi
         << " before the contact without the primitives within tolerance there";
   }

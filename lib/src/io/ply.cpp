@@ -367,7 +367,7 @@ class EntryContext {
   }
   std::string describe() const {
     if (!element_) return "header";
-    return element_->name + " " + std::to_string(index_);
+    return io_detail::printable(element_->name) + " " + std::to_string(index_);
   }
 
  private:
@@ -615,7 +615,8 @@ class BodyReader {
 
   std::int64_t read_list_count(const Property& property) {
     const std::int64_t count = source_.read_integer(*property.list_count_type);
-    if (count < 0) source_.fail("negative list length " + std::to_string(count) + " in " + property.name);
+    if (count < 0)
+      source_.fail("negative list length " + std::to_string(count) + " in " + io_detail::printable(property.name));
     return count;
   }
 

@@ -68,9 +68,24 @@ std::vector<std::string_view> split_fields(std::string_view line) {
   }
 }
 
+std::string printable(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 && byte != 0x7f) {
+      out.push_back(c);
+      continue;
+    }
+    static constexpr char kHex[] = "0123456789abcdef";
+    out.append("\\x").append(1, kHex[byte >> 4]).append(1, kHex[byte & 15]);
+  }
+  return out;
+}
+
 std::string in_quotes(std::string_view text, std::size_t max_length) {
   std::string quoted(1, '\'');
-  quoted.append(text.substr(0, max_length));
+  quoted.append(printable(text.substr(0, max_length)));
   if (text.size() <= max_length) return quoted.append(1, '\'');
   return quoted.append("...' (").append(std::to_string(text.size())).append(" characters)");
 }

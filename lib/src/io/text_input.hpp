@@ -31,8 +31,12 @@ std::string_view trim(std::string_view text);
 // Fields separated by ',' with the spaces or tabs around each removed.
 std::vector<std::string_view> split_fields(std::string_view line);
 
-// User text for a message: in quotes and cut short, since a malformed
-// number may be arbitrarily long.
+// User text for a message with every control byte and DEL as \xHH: a NUL
+// would end what() there, the others would reach a terminal.
+std::string printable(std::string_view text);
+
+// User text for a message: printable, in quotes and cut short, since a
+// malformed number may be arbitrarily long.
 std::string in_quotes(std::string_view text, std::size_t max_length = 60);
 
 // True for one or more of 0-9 and nothing else.
