@@ -75,6 +75,12 @@ struct CoarseBoxes {
   // rounded up, as separations() makes them). The mesh has coarse rows;
   // ids checked by the caller.
   [[gnu::noinline]] static std::uint32_t apart(const MeshSource& mesh, std::size_t first, const Float& separation) {
+    // Candidate j's ids at a fixed offset from one pointer, opaque to the
+    // optimiser, which otherwise computes each candidate's address anew
+    // (as Gather::with_rows).
+    MeshSource from_first = mesh;
+    from_first.pairs += first;
+    asm("" : "+r"(from_first.pairs));
     // The first box holds x1 (the origin) and the points up to first_other,
     // the second the rest (VF: the face, then the vertex; EE: one edge each).
     constexpr int first_other = MeshSource::kind == Kind::vertex_face ? 2 : 1;
@@ -88,7 +94,7 @@ struct CoarseBoxes {
 #pragma GCC unroll 3
     for (int i = 1; i <= 3; ++i) {
       Float difference[8];
-      for (int j = 0; j < 8; ++j) difference[j] = fused(row(mesh, first, j, 0), sign, row(mesh, first, j, i));
+      for (int j = 0; j < 8; ++j) difference[j] = fused(row(from_first, j, 0), sign, row(from_first, j, i));
       Float column[7];
       transpose(difference, column);
       bound = xsimd::max(bound, column[6]);
@@ -148,16 +154,17 @@ struct CoarseBoxes {
  private:
   static constexpr double kGrow = 1 + 0x1p-20;
 
-  // Lane group j's coarse row of point k (see transpose).
-  [[gnu::always_inline]] static Float row(const MeshSource& mesh, std::size_t first, int j, int k) {
+  // Row j's coarse row of point k (see transpose), the candidates counted
+  // from mesh.pairs.
+  [[gnu::always_inline]] static Float row(const MeshSource& mesh, int j, int k) {
     const auto load = [&](std::size_t candidate) {
       return _mm256_load_ps(mesh.positions.coarse + row_starts<false>(mesh, candidate)[k]);
     };
     if constexpr (kWide) {
-      const std::size_t a = first + static_cast<std::size_t>(j < 4 ? j : j + 4);
+      const auto a = static_cast<std::size_t>(j < 4 ? j : j + 4);
       return _mm512_insertf32x8(_mm512_castps256_ps512(load(a)), load(a + 4), 1);
     } else {
-      return load(first + static_cast<std::size_t>(j));
+      return load(static_cast<std::size_t>(j));
     }
   }
 
