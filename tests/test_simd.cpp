@@ -213,7 +213,7 @@ TEST(SimdKernels, MatchTheReferenceFilterOnAdversarialQueries) {
 // coincident vertices, and on one with NaN and infinite ones besides (the
 // lanes keep their checks). `fine`: ten clusters of vertices at 1000, 0.05
 // apart, each 6e-4 wide; most candidates join two clusters (apart, so the
-// coarse boxes in floats run throughout: AVX-512), one in twenty lies in
+// coarse boxes in floats run throughout: AVX-512, AVX2), one in twenty lies in
 // one cluster, with gaps of the order of floats' roundings there (6e-5);
 // float-subnormal and 1e25 vertices among them. A coarse threshold of 0
 // makes this test fail.
