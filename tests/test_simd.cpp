@@ -494,8 +494,9 @@ TEST(SimdKernels, BoxesAtASeparationKeepTheirMarginForRounding) {
 // 2^101). The lists start with candidates 0.25 further apart (so the
 // coarse test stays on past its trial), then the ones at the boundary,
 // then one at the boundary in every eight; per-candidate separations
-// take two values four by four. Threshold 0 (no 8 S), or the rounding
-// bounds e at 2^-30 |x| instead of 2^-24, makes this test fail.
+// take two values four by four. Threshold 0 (no 8 S), the rounding
+// bounds e at 2^-30 |x| instead of 2^-24, or AVX2's per-candidate
+// separations read with their halves swapped makes this test fail.
 TEST(SimdKernels, CoarseBoxesCullOnlyWhatTheDoubleBoxesCull) {
   const auto kernels = vector_kernels();
   if (kernels.empty()) GTEST_SKIP() << "no vector instruction set on this processor";
