@@ -571,11 +571,6 @@ typename Lanes<Arch>::Double lane_separations(const reference::FilterSettings& s
   return Double::load_aligned(values);
 }
 
-// Whether the first pass takes the coarse boxes (coarse_boxes.hpp): eight
-// lanes of doubles, sixteen of floats. x86 only (their code is AVX-512's).
-template <class Arch>
-constexpr bool kCoarseBoxes = std::is_base_of_v<xsimd::avx512dq, Arch>;
-
 // What the first pass culls, bit k for lane k.
 struct FirstCulls {
   std::uint32_t swept_box = 0;  // by the swept boxes
@@ -958,14 +953,17 @@ std::size_t first_pass(const Source& source, std::size_t begin, std::size_t end,
   std::size_t first = begin;
 #ifdef BATCHCCD_X86_LANES
   if constexpr (kPacked<Source> && kCoarseBoxes<Arch>) {
-    // Sixteen candidates at a time through the coarse boxes first: a group
-    // of eight they settle needs nothing more (coarse_boxes.hpp). They pay
-    // only where they settle most groups (a padded list: nine in ten), so
-    // a batch's first sixteen groups try them, and where they settle fewer
-    // than half of those (a tight list) the rest of the batch goes without.
+    // Two groups at a time through the coarse boxes first (sixteen
+    // candidates on AVX-512, eight on AVX2): a group they settle needs
+    // nothing more (coarse_boxes.hpp). They pay only where they settle
+    // most groups (a padded list: nine in ten), so a batch's first sixteen
+    // groups try them, and where they settle fewer than half of those (a
+    // tight list) the rest of the batch goes without.
     if (settings.swept_box && source.positions.coarse != nullptr) {
+      using Coarse = CoarseBoxes<Arch, Source>;
+      static_assert(Coarse::size == 2 * lanes);
       constexpr std::uint32_t all = (1u << lanes) - 1;
-      const __m512 separation = CoarseBoxes<Source>::separations(nullptr, within ? settings.min_distance : 0.0);
+      const typename Coarse::Float separation = Coarse::separations(nullptr, within ? settings.min_distance : 0.0);
       // The groups at `at` and at + lanes; how many of them it settled.
       const auto coarse_pair = [&](std::size_t at) {
         for (std::size_t half = 0; half < 2; ++half) {
@@ -973,8 +971,8 @@ std::size_t first_pass(const Source& source, std::size_t begin, std::size_t end,
           check_ids<Arch>(source, at + half * lanes, lanes);
         }
         const bool each = within && settings.min_distances != nullptr;
-        const std::uint32_t apart = CoarseBoxes<Source>::apart(
-            source, at, each ? CoarseBoxes<Source>::separations(settings.min_distances + at, 0) : separation);
+        const std::uint32_t apart =
+            Coarse::apart(source, at, each ? Coarse::separations(settings.min_distances + at, 0) : separation);
         int settled = 0;
         for (std::size_t half = 0; half < 2; ++half) {
           const std::size_t group = at + half * lanes;

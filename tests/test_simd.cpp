@@ -213,7 +213,7 @@ TEST(SimdKernels, MatchTheReferenceFilterOnAdversarialQueries) {
 // coincident vertices, and on one with NaN and infinite ones besides (the
 // lanes keep their checks). `fine`: ten clusters of vertices at 1000, 0.05
 // apart, each 6e-4 wide; most candidates join two clusters (apart, so the
-// coarse boxes in floats run throughout: AVX-512), one in twenty lies in
+// coarse boxes in floats run throughout: AVX-512, AVX2), one in twenty lies in
 // one cluster, with gaps of the order of floats' roundings there (6e-5);
 // float-subnormal and 1e25 vertices among them. A coarse threshold of 0
 // makes this test fail.
@@ -477,6 +477,91 @@ TEST(SimdKernels, BoxesAtASeparationKeepTheirMarginForRounding) {
     for (const simd::FilterKernels* k : kernels)
       EXPECT_EQ(survivors(k->edge_edge, source, 0, pairs.size(), settings), expected)
           << to_string(k->isa) << ", " << beyond << " beyond";
+  }
+}
+
+// The coarse boxes in floats (simd/coarse_boxes.hpp: AVX-512, AVX2) cull
+// only what the double boxes cull, where float rounding works against
+// them. Along x, x1 lies at P at t0, which rounds up to a float by nearly
+// half its spacing, and at Q at t1, which rounds down as far: the first
+// box reaches H = 1.5 - P (at t0), the second starts at H + g (at t1),
+// exactly g apart in doubles (g = 0, or the separation), which keep the
+// candidate; in floats the gap is g + 2^-23, which the floats alone would
+// cull, and only the rounding bound (8 S, S about 3.5 2^-24 here) keeps
+// it. The same at scales of 2^-60 to 2^97 (where floats round alike),
+// among float subnormals (2^-135) and below floats (2^-160), and with a
+// vertex that leaves the mesh without coarse rows (a NaN, an infinity,
+// 2^101). The lists start with candidates 0.25 further apart (so the
+// coarse test stays on past its trial), then the ones at the boundary,
+// then one at the boundary in every eight; per-candidate separations
+// take two values four by four. Threshold 0 (no 8 S), the rounding
+// bounds e at 2^-30 |x| instead of 2^-24, or AVX2's per-candidate
+// separations read with their halves swapped makes this test fail.
+TEST(SimdKernels, CoarseBoxesCullOnlyWhatTheDoubleBoxesCull) {
+  const auto kernels = vector_kernels();
+  if (kernels.empty()) GTEST_SKIP() << "no vector instruction set on this processor";
+  const double P = 1 + 0x1p-24 + 0x1p-33, Q = 1 + 0x1p-24 - 0x1p-33, H = 1.5 - P;
+  const double separation = 0x1p-10;
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  for (const double g : {0.0, separation}) {
+    // In floats, the boundary's gap beyond g exceeds g's own rounding up.
+    const float float_gap = (static_cast<float>(Q + H + g) - static_cast<float>(Q)) - (1.5F - static_cast<float>(P));
+    EXPECT_GT(float_gap, static_cast<float>(g * (1 + 0x1p-20)));
+    for (const int scale : {0, -60, 60, 97, -135, -160})
+      for (const double unused : {0.0, nan, inf, 0x1p101}) {
+        if (scale != 0 && unused != 0) continue;
+        // Vertices: x1, x2 (EE and the face), the boundary's x3, x4 (EE;
+        // x3 is VF's vertex), the face's third corner, the far x3, x4, and
+        // one no candidate names.
+        Eigen::MatrixXd t0(8, 3), t1(8, 3);
+        t0 << P, 0, 0, 1.5, 0, 0, 2 + g, 0, 0, 2.5 + g, 0, 0, 1.25, 1, 0, 2.25 + g, 0, 0, 2.75 + g, 0, 0, unused, 0, 0;
+        t1 << Q, 0, 0, 1.25, 0, 0, Q + H + g, 0, 0, 2.5 + g, 0, 0, 1.25, 1, 0, Q + H + g + 0.25, 0, 0, 2.75 + g, 0, 0,
+            0, 0, 0;
+        t0.topRows(7) *= std::ldexp(1.0, scale), t1.topRows(7) *= std::ldexp(1.0, scale);
+        const simd::PackedPositions packed(t0, t1);
+        const simd::MeshPositions positions = packed.view();
+        EXPECT_EQ(positions.coarse != nullptr, unused == 0 && scale < 98) << scale << " " << unused;
+        const Eigen::MatrixXi faces = (Eigen::MatrixXi(1, 3) << 0, 1, 4).finished();
+        const simd::PackedFaces packed_faces(faces, 1);
+        std::vector<std::array<int, 4>> ee;
+        std::vector<std::array<int, 2>> vf;
+        std::vector<double> separations;
+        for (int n = 0; n < 256; ++n) {
+          const bool boundary = (n >= 64 && n < 128) || (n >= 128 && n % 8 == 3);
+          ee.push_back(boundary ? std::array{0, 1, 2, 3} : std::array{0, 1, 5, 6});
+          vf.push_back(boundary ? std::array{2, 0} : std::array{5, 0});
+          // The far ones kept where their separation exceeds their gap.
+          separations.push_back(std::ldexp(boundary || n % 8 < 4 ? separation : 0.5, scale));
+        }
+        const simd::MeshEdgeEdge ee_source{positions, ee.data()};
+        const simd::MeshVertexFace vf_source{positions, packed_faces.view(), vf.data()};
+        const reference::FilterSettings boxes{.sign = false, .separation = false, .pieces = 1, .swept_box = true};
+        std::vector<reference::FilterSettings> settings(2, boxes);
+        settings[1] = {};  // every stage
+        if (g > 0)
+          for (std::size_t i = 0, n = settings.size(); i < n; ++i) {
+            settings[i].within = true, settings[i].min_distance = std::ldexp(separation, scale);
+            settings.push_back(settings[i]);
+            settings.back().min_distances = separations.data();
+          }
+        for (const reference::FilterSettings& s : settings) {
+          const std::string what = describe(s) + ", scale 2^" + std::to_string(scale) + ", unused " +
+                                   std::to_string(unused) + ", gap " + std::to_string(g);
+          const auto ee_expected = survivors(simd::kScalarKernels.edge_edge, ee_source, 0, ee.size(), s);
+          const auto vf_expected = survivors(simd::kScalarKernels.vertex_face, vf_source, 0, vf.size(), s);
+          if (&s == &settings[0] && std::abs(scale) <= 97) {
+            // The double boxes keep every candidate at the boundary, and cull the far ones.
+            EXPECT_EQ(ee_expected.size() - 4, 64u + 16u) << what;
+            EXPECT_EQ(vf_expected.size() - 4, 64u + 16u) << what;
+          }
+          for (const simd::FilterKernels* k : kernels) {
+            EXPECT_EQ(survivors(k->edge_edge, ee_source, 0, ee.size(), s), ee_expected)
+                << to_string(k->isa) << " edge-edge, " << what;
+            EXPECT_EQ(survivors(k->vertex_face, vf_source, 0, vf.size(), s), vf_expected)
+                << to_string(k->isa) << " vertex-face, " << what;
+          }
+        }
+      }
   }
 }
 
