@@ -14,6 +14,7 @@
 #include "reference/inside_proof.hpp"
 #include "reference/separation_filter.hpp"
 #include "reference/sign_filter.hpp"
+#include "reference/turning_gap.hpp"
 
 namespace batchccd::reference {
 namespace {
@@ -468,8 +469,9 @@ class InclusionSolver {
   // direction at t to the one at the interval's end e, then keeps every
   // upper-lower pair's gap n(s) . (x_upper(s) - x_lower(s)) -- a quadratic
   // in s -- above min_distance |n(s)| when its three Bernstein
-  // coefficients exceed min_distance max(|n(t)|, |n(e)|) (|n(s)| is
-  // convex). Certified up to e whatever `until`, as the other steps are.
+  // coefficients exceed min_distance max(|n(t)|, |n(e)|) (turning_apart,
+  // turning_gap.hpp). Certified up to e whatever `until`, as the other
+  // steps are.
   double cleared_turning(double t, double until, const ClosestAt& closest) const {
     constexpr double grid = 0x1p45;
     if (std::floor(t * grid) / grid != t) return t;  // off the grid: interpolation not bounded
@@ -505,60 +507,13 @@ class InclusionSolver {
       const double end = t + length;
       const ClosestAt far = closest_at(end);
       if (const std::optional<V3> end_direction = closest_direction(far);
-          end_direction && turning_apart(*start_direction, closest.position, *end_direction, far.position))
+          end_direction && turning_apart(kind_, *start_direction, closest.position, *end_direction, far.position,
+                                         reach_, absolute_error_, settings_.min_distance, settings_.certified))
         return std::min(end, until);
       length = attempt == 0 ? std::min(length_of(kReachFractions[1]), std::floor(length * 0.5 * grid) / grid)
                             : std::floor(length * 0.5 * grid) / grid;
     }
     return t;
-  }
-
-  // Whether, with n(s) linear from `start` (at the interval's start, where
-  // the positions are `at_start`) to `end` (at its end, positions
-  // `at_end`), every upper-lower pair's gap along n(s) exceeds
-  // min_distance |n(s)| throughout: the quadratic's Bernstein coefficients
-  // n0 . D0, (n0 . D1 + n1 . D0) / 2 and n1 . D1 (D the pair's difference)
-  // against min_distance times the longer of n0, n1. Each projection errs
-  // by at most 8 u of |n| . reach_ plus the frame's absolute error (as in
-  // separating); 16 u also covers the at most seven roundings of a
-  // coefficient's sums, each at most u of the sum of its terms' magnitudes.
-  bool turning_apart(const V3& start, const std::array<V3, 3>& at_start, const V3& end,
-                     const std::array<V3, 3>& at_end) const {
-    const double start_length = std::sqrt(dot(start, start)), end_length = std::sqrt(dot(end, end));
-    const double longer = std::max(start_length, end_length) * (1 + 8 * kUnitRoundoff);
-    if (!(longer > 0) || !std::isfinite(longer)) return false;
-    const double threshold = settings_.min_distance * longer * (1 + 4 * kUnitRoundoff) + kUnderflowFloor;
-    const bool certified = settings_.certified;
-    // projection[d][e][k]: direction d (0 start, 1 end) on the positions
-    // at end e of point k (x1..x4; x1, the origin, projects to 0 exactly),
-    // error[d][k] its error bound.
-    double projection[2][2][4] = {}, error[2][4] = {};
-    const V3* directions[2] = {&start, &end};
-    const std::array<V3, 3>* positions[2] = {&at_start, &at_end};
-    for (int d = 0; d < 2; ++d) {
-      const V3 magnitude = absolute(*directions[d]);
-      const double weight = magnitude.x + magnitude.y + magnitude.z;
-      const double floor = certified ? weight * (absolute_error_ + 0x1p-1073) + kUnderflowFloor : 0;
-      for (int k = 1; k < 4; ++k) {
-        error[d][k] = certified ? 16 * kUnitRoundoff * dot(magnitude, reach_[k - 1]) + floor : 0;
-        for (int e = 0; e < 2; ++e) projection[d][e][k] = dot(*directions[d], (*positions[e])[k - 1]);
-      }
-    }
-    // A lower bound of n_d . (x_upper - x_lower) at end e.
-    const auto gap = [&](int d, int e, int upper, int lower) {
-      return (projection[d][e][upper] - error[d][upper]) - (projection[d][e][lower] + error[d][lower]);
-    };
-    // Points 0..3 are x1..x4: VF upper {3}, lower {0, 1, 2}; EE upper {0, 1}, lower {2, 3}.
-    const bool vertex_face = kind_ == Kind::vertex_face;
-    for (int upper = 0; upper < 4; ++upper)
-      for (int lower = 0; lower < 4; ++lower) {
-        const bool pair = vertex_face ? upper == 3 && lower < 3 : upper < 2 && lower >= 2;
-        if (!pair) continue;
-        if (!(gap(0, 0, upper, lower) > threshold) || !(gap(1, 1, upper, lower) > threshold) ||
-            !(gap(0, 1, upper, lower) + gap(1, 0, upper, lower) > 2 * threshold))
-          return false;
-      }
-    return true;
   }
 
   // Whether a witness stands at one of the times toi_tolerance, twice that,
@@ -1096,7 +1051,7 @@ class InclusionSolver {
   double absolute_error_ = 0;
   // Componentwise max(|x(0)|, |x(1)|) of x2..x4: at least the magnitude of
   // each of their positions in the step, (1 - t) |x(0)| + t |x(1)|.
-  V3 reach_[3];
+  std::array<V3, 3> reach_;
   // An upper bound of the largest relative displacement, the distance's
   // Lipschitz constant (docs/design.md §11): computed where a step needs
   // it, which few do.
