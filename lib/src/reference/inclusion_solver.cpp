@@ -219,6 +219,11 @@ class InclusionSolver {
     if (time.low < advanced_ && separated_along_closest(time, ends)) return std::nullopt;
     if (time.low >= advanced_ && advance(time.low, std::min(time.high, settings_.tmax)))
       return SolverOutcome{true, advanced_, false, settings_.certified};
+    // Every time up to advanced_ is free of contact, tmax included: nothing
+    // after it counts, and searching the intervals that straddle it (down
+    // to a width near tmax, log2(1 / tmax) halvings with a shrinking
+    // window's small tmax) would only find what does not count.
+    if (advanced_ >= settings_.tmax) return SolverOutcome{false, 0, false, settings_.certified};
     if (time.high <= advanced_ || apart_over(ends)) return std::nullopt;
     const bool settled = time.width() <= settings_.toi_tolerance || !settings_.need_toi;
     // A wide interval gets one box: where conservative advancement stalled,
