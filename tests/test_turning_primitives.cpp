@@ -21,6 +21,7 @@
 #include "batchccd/ccd.hpp"
 #include "batchccd/lab.hpp"
 #include "exact_distance.hpp"
+#include "reference/turning_gap.hpp"
 
 namespace batchccd {
 namespace {
@@ -237,6 +238,178 @@ TEST(TurningPrimitives, VertexPassingAWideningSliverIsFound) {
       EXPECT_LE(solver.toi, witness);
     }
   }
+}
+
+// A vertex beside an edge of a triangle, near one end b of it, while the
+// edge turns about b towards the vertex: the closest pair lies on the edge
+// and its distance falls at the rate of the edge's points next to the
+// vertex, while along any fixed direction the far end c swings towards the
+// vertex several times faster (as on rod-twist). Neither the closest
+// direction's step nor the plane's follows that (the closest pair is not
+// inside the triangle), and both crawl: after a dozen steps the solver
+// turns its direction with the closest pair (docs/design.md §11,
+// cleared_turning). Half of the vertices come within the separation by
+// t1, half stop short of it.
+Query vertex_by_turning_edge(std::mt19937_64& random, double separation, bool reaching) {
+  std::uniform_real_distribution<double> unit(0, 1);
+  const auto draw = [&](double low, double high) { return low + (high - low) * unit(random); };
+  // The edge along x from b = 0, the vertex towards +y at `along` of its
+  // length (a little off its plane), the third corner towards -y and out
+  // of the plane.
+  const double along = draw(0.05, 0.2), start = draw(4, 8) * separation;
+  const double end = (reaching ? draw(0.3, 0.8) : draw(1.5, 3)) * separation;
+  // The edge turns in the x-y plane by the angle that brings its line from
+  // `start` to `end` of the vertex: start cos(angle) - along length
+  // sin(angle) = end.
+  const double length = draw(0.8, 1.2);
+  const double angle = std::acos(end / std::hypot(along * length, start)) - std::atan2(along * length, start);
+  const Vec3 b(0, 0, 0), c0(length, 0, 0), c1(length * std::cos(angle), length * std::sin(angle), 0);
+  const Vec3 a0(draw(0.2, 0.6), -draw(0.5, 1), draw(-0.3, 0.3));
+  const Vec3 a1(a0.x() * std::cos(angle) - a0.y() * std::sin(angle), a0.x() * std::sin(angle) + a0.y() * std::cos(angle),
+                a0.z());
+  const Vec3 vertex(along * length, start, draw(-0.5, 0.5) * separation);
+  const Vec3 drift = draw(0, 0.1) * separation * Vec3(draw(-1, 1), 0, draw(-1, 1));
+  return make_query(Kind::vertex_face,
+                    std::vector<Vec3>{on_grid(vertex), on_grid(a0), on_grid(b), on_grid(c0)},
+                    std::vector<Vec3>{on_grid(vertex + drift), on_grid(a1), on_grid(b), on_grid(c1)});
+}
+
+TEST(TurningPrimitives, VertexClosingOnATurningEdge) {
+  std::mt19937_64 random(29);
+  const double separation = 0x1p-6;
+  const Rational separation2 = Rational(separation) * Rational(separation);
+  int sampled_hits = 0, labelled_misses = 0;
+  constexpr int kQueries = 200;
+  for (int n = 0; n < kQueries; ++n) {
+    const Query q = vertex_by_turning_edge(random, separation, n % 2 == 0);
+    int first_sample = -1;
+    for (int k = 0; k <= kSamples && first_sample < 0; ++k)
+      if (testing::squared_distance_at(Kind::vertex_face, q, Rational(k, kSamples)) <= separation2) first_sample = k;
+    const Label label = first_sample >= 0 ? Label::hit : testing::label(Kind::vertex_face, q, separation).label;
+    sampled_hits += first_sample >= 0;
+    labelled_misses += label == Label::miss;
+    for (const Mode mode : kCertified) {
+      SCOPED_TRACE(::testing::Message() << "query " << n << " " << to_string(mode));
+      const QueryResult result = query_ccd(Kind::vertex_face, q, with(mode, separation));
+      if (first_sample >= 0) {
+        EXPECT_TRUE(result.hit);
+        EXPECT_LE(result.toi, static_cast<double>(first_sample) / kSamples);
+      }
+      if (label == Label::miss) {
+        EXPECT_FALSE(result.hit);
+      }
+    }
+  }
+  std::cout << "sampled hits " << sampled_hits << ", labelled misses " << labelled_misses << " of " << kQueries << "\n";
+  EXPECT_GT(sampled_hits, kQueries / 4);
+  EXPECT_GT(labelled_misses, kQueries / 4);
+}
+
+// turning_apart (turning_gap.hpp), the turning step's certificate, alone:
+// the positions x2..x4 relative to x1 at the interval's ends (the query
+// from them, x1 the origin throughout) and the directions at either end.
+using V3 = reference::Vector3<double>;
+using Positions = std::array<V3, 3>;
+
+Positions reach_of(const Positions& start, const Positions& end) {
+  Positions reach;
+  for (int i = 0; i < 3; ++i)
+    reach[i] = {std::max(std::fabs(start[i].x), std::fabs(end[i].x)), std::max(std::fabs(start[i].y), std::fabs(end[i].y)),
+                std::max(std::fabs(start[i].z), std::fabs(end[i].z))};
+  return reach;
+}
+
+bool turning_apart(Kind kind, const V3& n0, const Positions& start, const V3& n1, const Positions& end,
+                   double min_distance) {
+  return reference::turning_apart(kind, n0, start, n1, end, reach_of(start, end), 0, min_distance, true);
+}
+
+// The query whose x1 stays at the origin and whose x2..x4 move from `start`
+// to `end` (make_query's order: VF p a b c, EE as x1..x4).
+Query relative_query(Kind kind, const Positions& start, const Positions& end) {
+  const auto points = [&](const Positions& x) {
+    const auto vec = [](const V3& v) { return Vec3(v.x, v.y, v.z); };
+    return kind == Kind::vertex_face ? std::vector<Vec3>{vec(x[2]), Vec3::Zero(), vec(x[0]), vec(x[1])}
+                                     : std::vector<Vec3>{Vec3::Zero(), vec(x[0]), vec(x[1]), vec(x[2])};
+  };
+  return make_query(kind, points(start), points(end));
+}
+
+// A vertex passing straight through a small triangle: apart along +x at the
+// start and along -x at the end, but not in between. Only the middle
+// coefficient (n0 . D1 + n1 . D0) / 2 says so.
+TEST(TurningGap, TheMiddleCoefficientSeesAVertexPassingThrough) {
+  const Positions triangle_and_vertex_start{V3{0, 0.1, 0}, V3{0, 0, 0.1}, V3{1, 0.02, 0.02}};
+  const Positions triangle_and_vertex_end{V3{0, 0.1, 0}, V3{0, 0, 0.1}, V3{-1, 0.02, 0.02}};
+  const Query q = relative_query(Kind::vertex_face, triangle_and_vertex_start, triangle_and_vertex_end);
+  ASSERT_EQ(testing::squared_distance_at(Kind::vertex_face, q, Rational(1, 2)), 0);
+  EXPECT_FALSE(turning_apart(Kind::vertex_face, V3{1, 0, 0}, triangle_and_vertex_start, V3{-1, 0, 0},
+                             triangle_and_vertex_end, 0x1p-6));
+  // The same directions over the first half alone (the vertex at x = 0.5
+  // at its end) certify it.
+  const Positions halfway{V3{0, 0.1, 0}, V3{0, 0, 0.1}, V3{0.5, 0.02, 0.02}};
+  EXPECT_TRUE(turning_apart(Kind::vertex_face, V3{1, 0, 0}, triangle_and_vertex_start, V3{1, 0, 0}, halfway, 0x1p-6));
+}
+
+// n1 a hundred times n0, both along x: the vertex 1.5 separations from
+// the triangle's plane x = 0 at the start and half a separation at the
+// end. Every coefficient exceeds the separation times the shorter
+// direction; the longer one is what |n(s)| may reach.
+TEST(TurningGap, TheThresholdTakesTheLongerDirection) {
+  const double separation = 0x1p-6;
+  const Positions start{V3{0, 0.5, 0}, V3{0, 0, 0.5}, V3{1.5 * separation, 0.1, 0.1}};
+  const Positions end{V3{0, 0.5, 0}, V3{0, 0, 0.5}, V3{0.5 * separation, 0.1, 0.1}};
+  const Query q = relative_query(Kind::vertex_face, start, end);
+  ASSERT_LT(testing::squared_distance_at(Kind::vertex_face, q, 1), Rational(separation) * Rational(separation));
+  EXPECT_FALSE(turning_apart(Kind::vertex_face, V3{1, 0, 0}, start, V3{100, 0, 0}, end, separation));
+  EXPECT_FALSE(turning_apart(Kind::vertex_face, V3{100, 0, 0}, start, V3{1, 0, 0}, end, separation));
+}
+
+// At random: whatever it certifies is farther apart than the separation at
+// every one of 65 sampled times (exact distances), for directions near the
+// ones the solver takes (from the second primitive towards the first at
+// either end) and for directions at random.
+TEST(TurningGap, CertifiedIntervalsAreApartAtEverySample) {
+  std::mt19937_64 random(2811);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  const auto on_grid_v3 = [&](double scale) {
+    const Vec3 p = on_grid(scale * Vec3(unit(random), unit(random), unit(random)));
+    return V3{p.x(), p.y(), p.z()};
+  };
+  int certified = 0, refused = 0;
+  for (const Kind kind : {Kind::vertex_face, Kind::edge_edge})
+    for (int n = 0; n < 400; ++n) {
+      Positions start, end;
+      for (int i = 0; i < 3; ++i) {
+        start[i] = on_grid_v3(1);
+        const V3 motion = on_grid_v3(0.5);
+        end[i] = {start[i].x + motion.x, start[i].y + motion.y, start[i].z + motion.z};
+      }
+      // Upper minus lower centroid at either end (VF x4 over x1 x2 x3; EE
+      // x1 x2 over x3 x4), nudged; every fourth pair at random.
+      const auto towards_upper = [&](const Positions& x) {
+        V3 d = kind == Kind::vertex_face
+                   ? V3{x[2].x - (x[0].x + x[1].x) / 3, x[2].y - (x[0].y + x[1].y) / 3, x[2].z - (x[0].z + x[1].z) / 3}
+                   : V3{(x[0].x - x[1].x - x[2].x) / 2, (x[0].y - x[1].y - x[2].y) / 2, (x[0].z - x[1].z - x[2].z) / 2};
+        const V3 nudge = on_grid_v3(0.2);
+        return V3{d.x + nudge.x, d.y + nudge.y, d.z + nudge.z};
+      };
+      const bool at_random = n % 4 == 3;
+      const V3 n0 = at_random ? on_grid_v3(1) : towards_upper(start), n1 = at_random ? on_grid_v3(1) : towards_upper(end);
+      const double separation = 0.1 * (unit(random) + 1);
+      const bool apart = turning_apart(kind, n0, start, n1, end, separation);
+      (apart ? certified : refused) += 1;
+      if (!apart) continue;
+      const Query q = relative_query(kind, start, end);
+      const Rational separation2 = Rational(separation) * Rational(separation);
+      for (int k = 0; k <= 64; ++k) {
+        SCOPED_TRACE(::testing::Message() << to_string(kind) << " " << n << " sample " << k);
+        EXPECT_GT(testing::squared_distance_at(kind, q, Rational(k, 64)), separation2);
+      }
+    }
+  std::cout << "certified " << certified << ", refused " << refused << " of 800\n";
+  EXPECT_GT(certified, 100);
+  EXPECT_GT(refused, 100);
 }
 
 }  // namespace

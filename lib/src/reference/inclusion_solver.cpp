@@ -14,6 +14,7 @@
 #include "reference/inside_proof.hpp"
 #include "reference/separation_filter.hpp"
 #include "reference/sign_filter.hpp"
+#include "reference/turning_gap.hpp"
 
 namespace batchccd::reference {
 namespace {
@@ -27,6 +28,18 @@ constexpr double kSmallestWidth = 0x1p-45;
 constexpr double kWideInterval = 0x1p-8;
 constexpr std::int64_t kWideBudget = 16;
 constexpr std::int64_t kWideDistanceBudget = 1;  // with a minimum separation
+
+// The parts of a plain-double estimate of how far the primitives stay apart
+// that a step tries to certify, longest first: all but a sliver (close to
+// a contact, where the estimate is nearly exact, the step then lands
+// within a hair of it), else 1/16 short of it.
+constexpr double kReachFractions[] = {1 - 0x1p-10, 0.9375};
+
+// The step of conservative advancement from which it also tries a
+// direction that turns with the closest pair (cleared_turning), when the
+// steps shrink by less than half each: before it, the other steps nearly
+// always suffice, and the turning step costs about five of theirs.
+constexpr int kTurningFromStep = 12;
 
 struct Interval {
   double low, high;
@@ -45,6 +58,7 @@ using V3 = Vector3<double>;
 
 V3 as_vector(const Vec3& v) { return {v[0], v[1], v[2]}; }
 V3 absolute(const V3& v) { return {std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}; }
+V3 largest(const V3& a, const V3& b) { return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)}; }
 V3 interpolate(const V3& a, const V3& b, double t) {
   const double s = 1 - t;
   return {s * a.x + t * b.x, s * a.y + t * b.y, s * a.z + t * b.z};
@@ -86,17 +100,13 @@ class InclusionSolver {
         position_[i][tau] = as_vector(query.relative[i][tau]);
         magnitude_[i][tau] = absolute(position_[i][tau]);
       }
+    for (int i = 0; i < 3; ++i) reach_[i] = largest(magnitude_[i][0], magnitude_[i][1]);
     if (settings.certified) {
       cubic_error_ = interpolated_coefficient_error(query.absolute_error);
       function_error_ = collision_function_error(query.absolute_error);
     }
     // A separation raised to 2^-1022 (to_scaled_length) cannot witness a contact.
     absolute_error_ = query.absolute_error;
-    if (settings.min_distance > 0) {  // the distance's Lipschitz constant, for advance()
-      const SeparationErrorModel error = separation_error(absolute_error_, settings.certified);
-      motion_ = std::sqrt(largest_displacement2(kind, position_, error.relative, error.floor)) *
-                SeparationErrors::grow;
-    }
     witness_distance_ = settings.min_distance > 0x1p-1022 ? settings.min_distance : 0;
   }
 
@@ -201,11 +211,19 @@ class InclusionSolver {
   // or nothing when it was excluded or split. A contact found in an interval
   // not yet toi_tolerance wide splits it: the first contact may lie earlier.
   std::optional<SolverOutcome> search_within_distance(const Interval& time, const Endpoints& ends) {
-    if (separated_along_closest(time, ends)) return std::nullopt;
     // Conservative advancement first: where it gets to a contact it
-    // settles the query, and the times it passes need no search.
+    // settles the query, and the times it passes need no search. Its first
+    // step along the closest direction at the start nearly always does
+    // what the one at the middle would; only an interval it does not start
+    // (its start already advanced past) takes the middle's.
+    if (time.low < advanced_ && separated_along_closest(time, ends)) return std::nullopt;
     if (time.low >= advanced_ && advance(time.low, std::min(time.high, settings_.tmax)))
       return SolverOutcome{true, advanced_, false, settings_.certified};
+    // Every time up to advanced_ is free of contact, tmax included: nothing
+    // after it counts, and searching the intervals that straddle it (down
+    // to a width near tmax, log2(1 / tmax) halvings with a shrinking
+    // window's small tmax) would only find what does not count.
+    if (advanced_ >= settings_.tmax) return SolverOutcome{false, 0, false, settings_.certified};
     if (time.high <= advanced_ || apart_over(ends)) return std::nullopt;
     const bool settled = time.width() <= settings_.toi_tolerance || !settings_.need_toi;
     // A wide interval gets one box: where conservative advancement stalled,
@@ -281,57 +299,81 @@ class InclusionSolver {
   }
   std::optional<V3> closest_direction(double t) const { return closest_direction(closest_at(t)); }
 
-  // Whether the gap along n between the two primitives exceeds min_distance
-  // |n| at both ends of the interval `ends` holds, so (the gap being concave
-  // in t) throughout it. Points of the side n points to ("upper") and of
-  // the other: VF the vertex x4 over the triangle x1 = 0, x2, x3; EE edge a
-  // (0, x2) over edge b (x3, x4).
-  bool separated_along(const V3& n, const Endpoints& ends) const {
+  // A direction n with what separated_along needs of it beyond the
+  // positions: the threshold min_distance |n| and each point's projection
+  // error. A projection's error is the interpolated position's (3 u of its
+  // magnitude) and the dot product's (3 u), bounded by 8 u of n's magnitude
+  // against reach_ (which bounds the position's magnitude at every time of
+  // the step), plus the scaled frame's absolute error in each coordinate.
+  struct Separating {
+    V3 n;
+    double threshold;
+    double error[3];
+  };
+  std::optional<Separating> separating(const V3& n) const {
     const double length = std::sqrt(dot(n, n)) * (1 + 8 * kUnitRoundoff);
-    if (!(length > 0) || !std::isfinite(length)) return false;
+    if (!(length > 0) || !std::isfinite(length)) return std::nullopt;
     const V3 magnitude = absolute(n);
     const double weight = magnitude.x + magnitude.y + magnitude.z;
-    // A projection's error: the interpolated position's (3 u of its
-    // magnitude) and the dot product's (3 u), bounded by 8 u, plus the
-    // scaled frame's absolute error in each coordinate.
     const double floor = settings_.certified ? weight * (absolute_error_ + 0x1p-1073) + kUnderflowFloor : 0;
     const double relative = settings_.certified ? 8 * kUnitRoundoff : 0;
+    Separating direction{n, settings_.min_distance * length * (1 + 4 * kUnitRoundoff) + kUnderflowFloor, {}};
+    for (int i = 0; i < 3; ++i) direction.error[i] = relative * dot(magnitude, reach_[i]) + floor;
+    return direction;
+  }
+
+  // Whether the gap along the direction between the two primitives exceeds
+  // min_distance |n| for the positions x2..x4 of one time. Points of the
+  // side n points to ("upper") and of the other: VF the vertex x4 over the
+  // triangle x1 = 0, x2, x3; EE edge a (0, x2) over edge b (x3, x4).
+  bool separated_at(const Separating& direction, const std::array<V3, 3>& position) const {
     const bool vertex_face = kind_ == Kind::vertex_face;
-    for (int end = 0; end < 2; ++end) {
-      double upper_lowest = vertex_face ? std::numeric_limits<double>::infinity() : 0.0;
-      double lower_highest = vertex_face ? 0.0 : -std::numeric_limits<double>::infinity();
-      for (int i = 0; i < 3; ++i) {
-        const double projection = dot(n, ends.position[end][i]);
-        const double error = relative * dot(magnitude, ends.magnitude[end][i]) + floor;
-        const bool upper = vertex_face ? i == 2 : i == 0;
-        if (upper) upper_lowest = std::min(upper_lowest, projection - error);
-        else lower_highest = std::max(lower_highest, projection + error);
-      }
-      const double gap = (upper_lowest - lower_highest) * (1 - 4 * kUnitRoundoff);
-      if (!(gap > settings_.min_distance * length * (1 + 4 * kUnitRoundoff) + kUnderflowFloor)) return false;
+    double upper_lowest = vertex_face ? std::numeric_limits<double>::infinity() : 0.0;
+    double lower_highest = vertex_face ? 0.0 : -std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 3; ++i) {
+      const double projection = dot(direction.n, position[i]);
+      const bool upper = vertex_face ? i == 2 : i == 0;
+      if (upper) upper_lowest = std::min(upper_lowest, projection - direction.error[i]);
+      else lower_highest = std::max(lower_highest, projection + direction.error[i]);
     }
-    return true;
+    const double gap = (upper_lowest - lower_highest) * (1 - 4 * kUnitRoundoff);
+    return gap > direction.threshold;
+  }
+
+  // Whether the gap along n exceeds min_distance |n| at both ends of the
+  // interval `ends` holds, so (the gap being concave in t) throughout it.
+  bool separated_along(const V3& n, const Endpoints& ends) const {
+    const std::optional<Separating> direction = separating(n);
+    return direction && separated_at(*direction, ends.position[0]) && separated_at(*direction, ends.position[1]);
+  }
+
+  std::array<V3, 3> positions_at(double t) const {
+    std::array<V3, 3> position;
+    for (int i = 0; i < 3; ++i) position[i] = interpolate(position_[i][0], position_[i][1], t);
+    return position;
   }
 
   // How far from t (on the 2^-45 grid) the closest direction at t keeps
   // the primitives apart: along a fixed n each point's projection moves
   // linearly, so the gap between an upper and a lower point reaches
   // min_distance |n| at a time found in plain double; a little before the
-  // earliest of those, separated_along certifies the interval (and the
-  // step stops at `until`), or t is returned. Where the primitives slide past each other
-  // the motion along n is a small part of m, and this step is that much
-  // longer than conservative advancement's.
+  // earliest of those, separated_at certifies the interval (and the step
+  // stops at `until`), or t is returned. Where the primitives slide past
+  // each other the motion along n is a small part of m, and this step is
+  // that much longer than conservative advancement's.
   double cleared_along_closest(double t, double until, const ClosestAt& closest) const {
     constexpr double grid = 0x1p45;
     if (std::floor(t * grid) / grid != t) return t;  // off the grid: interpolation not bounded
     const std::optional<V3> n = closest_direction(closest);
     if (!n) return t;
+    const std::optional<Separating> direction = separating(*n);
+    if (!direction || !separated_at(*direction, closest.position)) return t;
     const double separation = settings_.min_distance * std::sqrt(dot(*n, *n));
     const bool vertex_face = kind_ == Kind::vertex_face;
     // Projections at t and their rates (x1, the origin, stays at 0).
     double at[4] = {0, 0, 0, 0}, rate[4] = {0, 0, 0, 0};
     for (int i = 0; i < 3; ++i) {
-      at[i + 1] = dot(*n, interpolate(position_[i][0], position_[i][1], t));
+      at[i + 1] = dot(*n, closest.position[i]);
       rate[i + 1] = dot(*n, position_[i][1]) - dot(*n, position_[i][0]);
     }
     // Points 0..3 are x1..x4: VF upper {3}, lower {0, 1, 2}; EE upper {0, 1}, lower {2, 3}.
@@ -344,13 +386,20 @@ class InclusionSolver {
         if (!(gap > 0)) return t;
         if (closing > 0) reach = std::min(reach, t + gap / closing);
       }
-    // 1/16 short of the plain-double reach, for separated_along's margins.
-    // Certified up to `end` whatever `until`, which only caps the step: the
-    // steps towards a contact are the same for every tmax beyond it, as
-    // conservative advancement's are (docs/design.md §12).
-    const double end = std::min(1.0, t + std::floor((reach - t) * 0.9375 * grid) / grid);
-    if (!(end > t)) return t;
-    return separated_along(*n, endpoints(Interval{t, end})) ? std::min(end, until) : t;
+    // Nearly all the way to the plain-double reach, else 1/16 short of it
+    // for separated_at's margins (the gap, concave, is certified at both
+    // ends; t's above). Certified up to `end` whatever `until`, which only
+    // caps the step: the steps towards a contact are the same for every
+    // tmax beyond it, as conservative advancement's are (docs/design.md §12).
+    double tried = t;
+    for (const double fraction : kReachFractions) {
+      const double end = std::min(1.0, t + std::floor((reach - t) * fraction * grid) / grid);
+      if (!(end > t)) return t;
+      if (end == tried) continue;
+      if (separated_at(*direction, positions_at(end))) return std::min(end, until);
+      tried = end;
+    }
+    return t;
   }
 
   // How far from t (on the 2^-45 grid) the distance to the triangle's plane
@@ -398,11 +447,77 @@ class InclusionSolver {
         reach = std::clamp(reach - h / slope, t, 1.0);
       }
     }
-    // Far from the reach the coefficients' hull is loose where the plane
-    // turns: shorter intervals (halved up to three times) fit it closer.
-    double length = std::floor((std::min(1.0, t + (reach - t) * 0.9375) - t) * grid) / grid;
+    // Close to a contact the estimate is nearly exact: all but a sliver of
+    // it first. Far from the reach the coefficients' hull is loose where
+    // the plane turns: 15/16 of it, then shorter intervals (halved up to
+    // three times) fit it closer.
+    const auto length_of = [&](double fraction) {
+      return std::floor((std::min(1.0, t + (reach - t) * fraction) - t) * grid) / grid;
+    };
+    const double nearly_all = length_of(kReachFractions[0]);
+    double length = length_of(kReachFractions[1]);
+    if (nearly_all > length && plane_apart(endpoints(Interval{t, t + nearly_all})))
+      return std::min(t + nearly_all, until);
     for (int attempt = 0; attempt < 4 && length > 0; ++attempt, length = std::floor(length * 0.5 * grid) / grid)
       if (plane_apart(endpoints(Interval{t, t + length}))) return std::min(t + length, until);
+    return t;
+  }
+
+  // How far from t (on the 2^-45 grid) a direction turning with the
+  // closest pair keeps the primitives apart (docs/design.md §11). Where
+  // the closest pair lies on an edge or a corner of a turning primitive,
+  // any fixed direction's gap shrinks as fast as that primitive's far
+  // vertex moves, the plane's is no bound, and the two steps above crawl.
+  // Newton's steps on the plain-double distance |F| at the closest
+  // parameters estimate where it reaches min_distance (its slope there is
+  // F . dF/dt / |F|, the parameters held); n(s), linear from the closest
+  // direction at t to the one at the interval's end e, then keeps every
+  // upper-lower pair's gap n(s) . (x_upper(s) - x_lower(s)) -- a quadratic
+  // in s -- above min_distance |n(s)| when its three Bernstein
+  // coefficients exceed min_distance max(|n(t)|, |n(e)|) (turning_apart,
+  // turning_gap.hpp). Certified up to e whatever `until`, as the other
+  // steps are.
+  double cleared_turning(double t, double until, const ClosestAt& closest) const {
+    constexpr double grid = 0x1p45;
+    if (std::floor(t * grid) / grid != t) return t;  // off the grid: interpolation not bounded
+    const std::optional<V3> start_direction = closest_direction(closest);
+    if (!start_direction) return t;
+    const double separation = settings_.min_distance;
+    std::array<V3, 3> rate;
+    for (int i = 0; i < 3; ++i) rate[i] = position_[i][1] - position_[i][0];
+    // |F| - min_distance and its slope at s, the parameters closest there.
+    const auto distance_at = [&](const ClosestAt& at, double& slope) {
+      const std::array<double, 3> w = weights(kind_, at.parameters[0], at.parameters[1]);
+      const V3 f = weighted_sum(w, at.position), df = weighted_sum(w, rate);
+      const double length = std::sqrt(dot(f, f));
+      slope = dot(f, df) / length;
+      return length - separation;
+    };
+    double slope = 0;
+    if (!(distance_at(closest, slope) > 0)) return t;
+    double reach = 1;  // moving apart at t: the whole step, if nothing turns it
+    if (slope < 0) {
+      reach = t;
+      for (int iteration = 0; iteration < 4; ++iteration) {
+        const double h = distance_at(closest_at(reach), slope);
+        if (!(slope < 0) || !std::isfinite(h)) break;
+        reach = std::clamp(reach - h / slope, t, 1.0);
+      }
+    }
+    const auto length_of = [&](double fraction) {
+      return std::floor((std::min(1.0, t + (reach - t) * fraction) - t) * grid) / grid;
+    };
+    double length = length_of(kReachFractions[0]);
+    for (int attempt = 0; attempt < 3 && length > 0; ++attempt) {
+      const double end = t + length;
+      const ClosestAt far = closest_at(end);
+      if (const std::optional<V3> end_direction = closest_direction(far);
+          end_direction && turning_apart(kind_, *start_direction, closest.position, *end_direction, far.position,
+                                         reach_, absolute_error_, settings_.min_distance, settings_.certified))
+        return std::min(end, until);
+      length = attempt == 0 ? std::min(length_of(kReachFractions[1]), std::floor(length * 0.5 * grid) / grid)
+                            : std::floor(length * 0.5 * grid) / grid;
+    }
     return t;
   }
 
@@ -432,15 +547,20 @@ class InclusionSolver {
   bool advance(double from, double until) {
     constexpr int kSteps = 64;
     const SeparationErrorModel error = separation_error(absolute_error_, settings_.certified);
-    if (!error.enabled || !(motion_ > 0)) return false;
+    if (!error.enabled) return false;
     constexpr double shrink = SeparationErrors::shrink, grid = 0x1p45;
-    double t = from;
+    double t = from, previous_step = 0;
     for (int step = 0; step < kSteps && t < until; ++step) {
       // Along the closest direction a step often clears all the way (and
       // then t itself holds no contact).
       const ClosestAt closest = closest_at(t);
       double cleared = cleared_along_closest(t, until, closest);
       if (cleared < until && closest.interior(kind_)) cleared = std::max(cleared, cleared_by_plane(t, until));
+      // Many steps already, each at least half the one before (towards a
+      // contact they shrink fast): the closest pair may lie on an edge or a
+      // corner that turns, which neither step above follows.
+      if (cleared < until && step >= kTurningFromStep && (cleared - t) * 2 >= previous_step)
+        cleared = std::max(cleared, cleared_turning(t, until, closest));
       if (cleared >= until) {
         t = until;
         break;
@@ -456,10 +576,11 @@ class InclusionSolver {
         const double gap = (distance - settings_.min_distance * SeparationErrors::grow) * shrink;
         if (!(gap > 0)) {
           advanced_ = std::max(advanced_, t);
-          return witnessed_at(t);
+          return witnessed(endpoints(Interval{t, t}), closest.parameters);
         }
-        // Whole grid steps: t is on the grid, so the sum is exact.
-        step_length = std::floor(gap / motion_ * shrink * grid) / grid;
+        // Whole grid steps: t is on the grid, so the sum is exact. Without
+        // relative motion (the fast baseline's m may be 0) the whole way.
+        step_length = std::floor(gap / motion() * shrink * grid) / grid;
       }
       const double next = std::min(t + step_length, until);
       if (step_length < settings_.toi_tolerance) {
@@ -470,6 +591,7 @@ class InclusionSolver {
         }
       }
       if (next <= t) break;
+      previous_step = next - t;
       t = next;
     }
     advanced_ = std::max(advanced_, t);
@@ -481,10 +603,15 @@ class InclusionSolver {
   // double and put on the same grid (any parameters of the primitives bound
   // the distance from above), evaluated with error bounds.
   bool witnessed_at(double t) const {
+    const Endpoints at = endpoints(Interval{t, t});
+    return witnessed(at, closest_parameters(at.position[0]));
+  }
+  // The same at the time of `at`, whose closest parameters are known.
+  bool witnessed(const Endpoints& at, const std::array<double, 2>& closest) const {
     constexpr double grid = 0x1p45;
-    const auto [u, v] = closest_parameters(endpoints(Interval{t, t}).position[0]);
+    const auto [u, v] = closest;
     const double u_grid = std::floor(u * grid) / grid, v_grid = std::floor(v * grid) / grid;
-    const Image image = evaluate(endpoints(Interval{t, t}), ParameterBox{{u_grid, u_grid}, {v_grid, v_grid}});
+    const Image image = evaluate(at, ParameterBox{{u_grid, u_grid}, {v_grid, v_grid}});
     return image.centre_distance <= witness_distance_;
   }
 
@@ -927,7 +1054,21 @@ class InclusionSolver {
   ErrorModel function_error_;
   double witness_distance_ = 0;
   double absolute_error_ = 0;
-  double motion_ = 0;      // an upper bound of the largest relative displacement
+  // Componentwise max(|x(0)|, |x(1)|) of x2..x4: at least the magnitude of
+  // each of their positions in the step, (1 - t) |x(0)| + t |x(1)|.
+  std::array<V3, 3> reach_;
+  // An upper bound of the largest relative displacement, the distance's
+  // Lipschitz constant (docs/design.md §11): computed where a step needs
+  // it, which few do.
+  double motion() {
+    if (motion_ < 0) {
+      const SeparationErrorModel error = separation_error(absolute_error_, settings_.certified);
+      motion_ = std::sqrt(largest_displacement2(kind_, position_, error.relative, error.floor)) *
+                SeparationErrors::grow;
+    }
+    return motion_;
+  }
+  double motion_ = -1;
   double advanced_ = 0;    // every time before it is free of contact (advance)
   std::int64_t iterations_ = 0;
 };
