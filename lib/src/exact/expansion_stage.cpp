@@ -83,6 +83,13 @@ Polynomial4 operator*(const Polynomial4& a, const Polynomial4& b) {
   return product;
 }
 
+Polynomial4 derivative(const Polynomial4& p) {
+  Polynomial4 slope;
+  slope.size = std::max(p.size - 1, 0);
+  for (int i = 1; i < p.size; ++i) slope.c[i - 1] = p.c[i] * static_cast<double>(i);
+  return slope;
+}
+
 // A double evaluation of an expression at the low end of a time interval,
 // with a bound of its rounding error, and bounds of the expression's
 // magnitude and slope over the interval: a filter that settles most signs
@@ -409,10 +416,7 @@ void narrow_finer(const Polynomial4& cubic, Root& root) {
     }
   };
   if (high - low > 2) {
-    Polynomial4 slope;
-    slope.size = cubic.size - 1;
-    for (int i = 1; i < cubic.size; ++i) slope.c[i - 1] = cubic.c[i] * static_cast<double>(i);
-    const double step = -cubic.at(root.low).estimate() / slope.at(root.low).estimate();
+    const double step = -cubic.at(root.low).estimate() / derivative(cubic).at(root.low).estimate();
     const double guess = std::ldexp(step, bits);
     if (std::isfinite(guess) && guess > static_cast<double>(low) && guess < static_cast<double>(high)) {
       const auto near = static_cast<std::uint64_t>(guess);
@@ -541,13 +545,9 @@ bool touches_where_flat(Kind kind, const Motion<Value>& v) {
 // exact slope at low and its curvature on [0, 1]; nullopt otherwise.
 std::optional<int> sign_by_slope(const Polynomial4& p, const Root& root) {
   constexpr double kMargin = 1 + 0x1p-40;  // covers the estimates' few ulps and the bound's own rounding
-  Polynomial4 slope;
+  const Polynomial4 slope = derivative(p);
   double curvature = 0;
-  slope.size = std::max(p.size - 1, 0);
-  for (int i = 1; i < p.size; ++i) {
-    slope.c[i - 1] = p.c[i] * static_cast<double>(i);
-    curvature += i * (i - 1) * std::fabs(p.c[i].estimate());
-  }
+  for (int i = 2; i < p.size; ++i) curvature += i * (i - 1) * std::fabs(p.c[i].estimate());
   const auto settle = [&](const auto& low) -> std::optional<int> {
     const double width = root.width();
     const double drift = width * (std::fabs(slope.at(low).estimate()) + width * curvature) * kMargin * kMargin;
@@ -756,8 +756,7 @@ class PlanarContact {
     std::optional<std::vector<Root>> roots = isolate_cubic_roots(p);
     Polynomial4 slope;
     if (!roots && p.degree() == 2 && (p.c[1] * p.c[1] - p.c[0] * p.c[2] * 4.0).is_zero()) {
-      slope.c = {p.c[1], p.c[2] * 2.0};
-      slope.size = 2;
+      slope = derivative(p);
       defining = &slope;
       roots = isolate_cubic_roots(slope);
     }
