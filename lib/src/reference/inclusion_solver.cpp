@@ -41,6 +41,13 @@ constexpr double kReachFractions[] = {1 - 0x1p-10, 0.9375};
 // always suffice, and the turning step costs about five of theirs.
 constexpr int kTurningFromStep = 12;
 
+// The part `fraction` of the way from t to `reach` (not past 1), rounded
+// down to the 2^-45 grid the steps' interval ends lie on.
+double step_length(double t, double reach, double fraction) {
+  constexpr double grid = 0x1p45;
+  return std::floor((std::min(1.0, t + (reach - t) * fraction) - t) * grid) / grid;
+}
+
 struct Interval {
   double low, high;
   double width() const { return high - low; }
@@ -451,9 +458,7 @@ class InclusionSolver {
     // it first. Far from the reach the coefficients' hull is loose where
     // the plane turns: 15/16 of it, then shorter intervals (halved up to
     // three times) fit it closer.
-    const auto length_of = [&](double fraction) {
-      return std::floor((std::min(1.0, t + (reach - t) * fraction) - t) * grid) / grid;
-    };
+    const auto length_of = [&](double fraction) { return step_length(t, reach, fraction); };
     const double nearly_all = length_of(kReachFractions[0]);
     double length = length_of(kReachFractions[1]);
     if (nearly_all > length && plane_apart(endpoints(Interval{t, t + nearly_all})))
@@ -504,9 +509,7 @@ class InclusionSolver {
         reach = std::clamp(reach - h / slope, t, 1.0);
       }
     }
-    const auto length_of = [&](double fraction) {
-      return std::floor((std::min(1.0, t + (reach - t) * fraction) - t) * grid) / grid;
-    };
+    const auto length_of = [&](double fraction) { return step_length(t, reach, fraction); };
     double length = length_of(kReachFractions[0]);
     for (int attempt = 0; attempt < 3 && length > 0; ++attempt) {
       const double end = t + length;
