@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -18,6 +19,7 @@
 #include <tbb/parallel_for.h>
 
 #include "arena.hpp"
+#include "horizons.hpp"
 #include "mesh_validation.hpp"
 #include "decider.hpp"
 #include "ipc_rules.hpp"
@@ -107,6 +109,7 @@ struct CallStorage {
   simd::PackedFaces faces;
   std::vector<std::array<int, 4>> point_pairs;
   std::vector<Query> lifted_queries;  // a 2D call's queries in the plane z = 0
+  Horizons horizons;                   // the collision-free step's packed rows over part of the step
   bool in_use = false;
 };
 
@@ -427,10 +430,68 @@ void as_edge_edge(const CandidateLists& candidates, const Options& options, std:
     for (const auto& [p, q] : candidates.vertex_vertex) pairs.push_back({p, p, q, q});
 }
 
-// A mesh call's four lists once the lane filters have run: where each
-// list's candidates come from, how many there are (0 when Options switches
-// the list off), their separations, and their survivors (all of them for
-// the unfiltered baseline: `filtered` false).
+// A mesh call's four lists, packed for the lanes: where each list's
+// candidates come from and how many there are (0 when Options switches the
+// list off).
+struct MeshSources {
+  const simd::MeshVertexFace& vertex_face;
+  const simd::MeshEdgeEdge& edge_edge;
+  const simd::MeshEdgeEdge& vertex_edge;
+  const simd::MeshEdgeEdge& vertex_vertex;
+  std::array<std::size_t, 4> counts;
+};
+
+// Checks the mesh (all but the ids of the lists in `filtered`, which the
+// lane filters check on the way), packs the positions, faces and point
+// candidates into the calling thread's storage, then
+// `then(const MeshSources&, CallStorage&)` in the arena of Options::threads.
+template <class Then>
+void with_mesh_sources(const MeshView& mesh, const CandidateLists& candidates, const Options& options,
+                       bool filtered, Then then) {
+  const std::array<std::size_t, 4> counts{options.vertex_face ? candidates.vertex_face.size() : 0,
+                                          options.edge_edge ? candidates.edge_edge.size() : 0,
+                                          options.vertex_edge ? candidates.vertex_edge.size() : 0,
+                                          options.vertex_vertex ? candidates.vertex_vertex.size() : 0};
+  with_call_storage([&](CallStorage& storage) {
+    in_arena(options.threads, [&] {
+      check_mesh(mesh, candidates, {.vertex_face = !filtered || !options.vertex_face,
+                                    .edge_edge = !filtered || !options.edge_edge,
+                                    .vertex_edge = !filtered || !options.vertex_edge,
+                                    .vertex_vertex = !filtered || !options.vertex_vertex});
+      simd::PackedPositions& packed = storage.packed;
+      packed.resize(mesh.positions_t0.rows());
+      tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, mesh.positions_t0.rows(), 1 << 14),
+                        [&](const tbb::blocked_range<std::int64_t>& rows) {
+                          packed.pack(mesh.positions_t0, mesh.positions_t1, rows.begin(), rows.end());
+                        });
+      // Faces only where the vertex-face list is read.
+      storage.faces.assign(mesh.faces, counts[0] > 0 ? mesh.faces.rows() : 0);
+      as_edge_edge(candidates, options, storage.point_pairs);
+      const std::array<int, 4>* point_pairs = storage.point_pairs.data();
+      const simd::MeshVertexFace vertex_face{packed.view(), storage.faces.view(), candidates.vertex_face.data()};
+      const simd::MeshEdgeEdge edge_edge{packed.view(), candidates.edge_edge.data()};
+      const simd::MeshEdgeEdge vertex_edge{packed.view(), point_pairs};
+      const simd::MeshEdgeEdge vertex_vertex{packed.view(), point_pairs + counts[2]};
+      then(MeshSources{vertex_face, edge_edge, vertex_edge, vertex_vertex, counts}, storage);
+    });
+  });
+}
+
+// Runs `filters()`, which may meet an id out of range, then names the
+// first bad id (check_mesh) in the exception the caller gets.
+template <class Filters>
+void naming_bad_ids(const MeshView& mesh, const CandidateLists& candidates, const Filters& filters) {
+  try {
+    filters();
+  } catch (const simd::IndexOutOfRange&) {
+    check_mesh(mesh, candidates);
+    throw std::logic_error("mesh_ccd: a filter found an index out of range that check_mesh did not");
+  }
+}
+
+// A mesh call's four lists once the lane filters have run: the sources,
+// their separations, and their survivors (all of them for the unfiltered
+// baseline: `filtered` false).
 struct FilteredMesh {
   const simd::MeshVertexFace& vertex_face;
   const simd::MeshEdgeEdge& edge_edge;
@@ -452,60 +513,68 @@ void filter_mesh(const MeshView& mesh, const CandidateLists& candidates, const M
   validate(options, lab);
   const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
   const bool filtered = decider_of(options, lab) != Decider::cubic;  // the baseline runs unfiltered
-  const std::array<std::size_t, 4> counts{options.vertex_face ? candidates.vertex_face.size() : 0,
-                                          options.edge_edge ? candidates.edge_edge.size() : 0,
-                                          options.vertex_edge ? candidates.vertex_edge.size() : 0,
-                                          options.vertex_vertex ? candidates.vertex_vertex.size() : 0};
   const std::array<Separations, 4> separations{
       separations_of(min_distances.vertex_face, candidates.vertex_face.size(), "vertex-face", options, lab),
       separations_of(min_distances.edge_edge, candidates.edge_edge.size(), "edge-edge", options, lab),
       separations_of(min_distances.vertex_edge, candidates.vertex_edge.size(), "vertex-edge", options, lab),
       separations_of(min_distances.vertex_vertex, candidates.vertex_vertex.size(), "vertex-vertex", options, lab)};
-  with_call_storage([&](CallStorage& storage) {
-    in_arena(options.threads, [&] {
-      // The lane filters check the ids of every list they read on the way;
-      // here the rest: shapes, faces, lists switched off, the baseline's lists.
-      check_mesh(mesh, candidates, {.vertex_face = !filtered || !options.vertex_face,
-                                    .edge_edge = !filtered || !options.edge_edge,
-                                    .vertex_edge = !filtered || !options.vertex_edge,
-                                    .vertex_vertex = !filtered || !options.vertex_vertex});
-      simd::PackedPositions& packed = storage.packed;
-      packed.resize(mesh.positions_t0.rows());
-      tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, mesh.positions_t0.rows(), 1 << 14),
-                        [&](const tbb::blocked_range<std::int64_t>& rows) {
-                          packed.pack(mesh.positions_t0, mesh.positions_t1, rows.begin(), rows.end());
-                        });
-      // Faces only where the vertex-face list is read.
-      storage.faces.assign(mesh.faces, counts[0] > 0 ? mesh.faces.rows() : 0);
-      as_edge_edge(candidates, options, storage.point_pairs);
-      const std::array<int, 4>* point_pairs = storage.point_pairs.data();
-      const simd::MeshVertexFace vertex_face_source{packed.view(), storage.faces.view(),
-                                                    candidates.vertex_face.data()};
-      const simd::MeshEdgeEdge edge_edge_source{packed.view(), candidates.edge_edge.data()};
-      const simd::MeshEdgeEdge vertex_edge_source{packed.view(), point_pairs};
-      const simd::MeshEdgeEdge vertex_vertex_source{packed.view(), point_pairs + counts[2]};
-      Partials partials(storage.partials);
-      std::array<std::vector<std::size_t>, 4>& survivors = storage.survivors;
-      if (filtered) {
-        try {
-          filter_source(Kind::vertex_face, vertex_face_source, counts[0], kernels.vertex_face, options, lab,
-                        separations[0], storage, partials, survivors[0]);
-          filter_source(Kind::edge_edge, edge_edge_source, counts[1], kernels.edge_edge, options, lab,
-                        separations[1], storage, partials, survivors[1]);
-          filter_source(Kind::vertex_edge, vertex_edge_source, counts[2], kernels.edge_edge, options, lab,
-                        separations[2], storage, partials, survivors[2]);
-          filter_source(Kind::vertex_vertex, vertex_vertex_source, counts[3], kernels.edge_edge, options, lab,
-                        separations[3], storage, partials, survivors[3]);
-        } catch (const simd::IndexOutOfRange&) {
-          check_mesh(mesh, candidates);  // names the first bad id
-          throw std::logic_error("mesh_ccd: a filter found an index out of range that check_mesh did not");
-        }
-      }
-      FilteredMesh lists{vertex_face_source, edge_edge_source, vertex_edge_source, vertex_vertex_source,
-                         counts, separations, survivors, filtered};
-      then(lists, partials);
-    });
+  with_mesh_sources(mesh, candidates, options, filtered, [&](const MeshSources& sources, CallStorage& storage) {
+    const auto& counts = sources.counts;
+    Partials partials(storage.partials);
+    std::array<std::vector<std::size_t>, 4>& survivors = storage.survivors;
+    if (filtered)
+      naming_bad_ids(mesh, candidates, [&] {
+        filter_source(Kind::vertex_face, sources.vertex_face, counts[0], kernels.vertex_face, options, lab,
+                      separations[0], storage, partials, survivors[0]);
+        filter_source(Kind::edge_edge, sources.edge_edge, counts[1], kernels.edge_edge, options, lab,
+                      separations[1], storage, partials, survivors[1]);
+        filter_source(Kind::vertex_edge, sources.vertex_edge, counts[2], kernels.edge_edge, options, lab,
+                      separations[2], storage, partials, survivors[2]);
+        filter_source(Kind::vertex_vertex, sources.vertex_vertex, counts[3], kernels.edge_edge, options, lab,
+                      separations[3], storage, partials, survivors[3]);
+      });
+    FilteredMesh lists{sources.vertex_face, sources.edge_edge, sources.vertex_edge, sources.vertex_vertex,
+                       counts, separations, survivors, filtered};
+    then(lists, partials);
   });
+}
+
+// The collision-free step's pass over one list (ipc::collision_free_stepsize):
+// batch by batch, the lane filters at `separation` over the part of the step
+// the window still asks about (Horizons), and at once `decide(i, tmax)` for
+// each survivor i, with tmax the window's. Once the window is closed (a
+// step of 0), the batches left only have their ids checked.
+template <class Source, class Decide>
+void decide_in_window(Kind kind, const Source& whole, std::size_t count, simd::FilterFunction<Source> lanes,
+                      double separation, double conservative_rescaling, Horizons& horizons, CallStorage& storage,
+                      ShrinkingWindow& window, const Decide& decide) {
+  reference::FilterSettings settings = reference::settings_for(kind, reference::filter_settings(Options{}, {}));
+  settings.within = true;
+  const std::size_t batches = (count + simd::kFilterBatch - 1) / simd::kFilterBatch;
+  if (storage.kept_in_batch.size() < count) storage.kept_in_batch.resize(count);
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, batches, 1),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t batch = range.begin(); batch < range.end(); ++batch) {
+          const std::size_t begin = batch * simd::kFilterBatch, end = std::min(count, begin + simd::kFilterBatch);
+          if (!(window.earliest() > 0)) {  // closed: nothing lowers 0
+            for (std::size_t i = begin; i < end; ++i) simd::row_starts(whole, i);
+            continue;
+          }
+          const Horizons::Rows rows = horizons.over(ipc_window_tmax(window.earliest(), conservative_rescaling));
+          Source within = whole;
+          within.positions = rows.positions;
+          reference::FilterSettings own = settings;
+          // Rounded up: the margin may be far below the separation's ulp.
+          own.min_distance = rows.margin > 0 ? std::nextafter(separation + rows.margin, HUGE_VAL) : separation;
+          simd::FilterCounts culls;
+          std::uint32_t* kept = storage.kept_in_batch.data() + begin;
+          const std::size_t survivors = lanes(within, begin, end, own, kept, culls);
+          for (std::size_t j = 0; j < survivors && window.earliest() > 0; ++j)
+            decide(begin + kept[j], ipc_window_tmax(window.earliest(), conservative_rescaling));
+        }
+      },
+      tbb::simple_partitioner());
 }
 
 }  // namespace
@@ -560,26 +629,27 @@ double ipc::collision_free_stepsize(const MeshView& mesh, const CandidateLists& 
   // The lanes cull at the largest separation a candidate may ask for, plus
   // the distance tolerance: a culled candidate cannot even come within the
   // band where a per-query call may report a contact it did not prove.
-  Options lanes;
-  lanes.min_distance = min_distance + rules::kLargestRescalingSeparation + tolerance;
-  lanes.threads = threads;
-  lanes.per_candidate_results = false;
+  const double separation = min_distance + rules::kLargestRescalingSeparation + tolerance;
+  Options options;
+  options.threads = threads;
+  const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
   ShrinkingWindow window(1.0);
-  filter_mesh(mesh, candidates, {}, lanes, {}, [&](FilteredMesh& lists, Partials&) {
-    const auto decide_survivors = [&](const auto& source, Kind kind, const std::vector<std::size_t>& survivors) {
-      for_each_survivor(survivors, [&](std::size_t i) {
-        // A step of 0 is the least there is: no survivor can change it.
-        if (!(window.earliest() > 0)) return;
-        const double tmax = ipc_window_tmax(window.earliest(), conservative_rescaling);
-        if (double toi = 1; rules::decide(kind, simd::query_at(source, i), toi, min_distance, tmax, tolerance,
-                                          max_iterations, conservative_rescaling))
-          window.lower_to(toi);
-      });
+  with_mesh_sources(mesh, candidates, options, true, [&](const MeshSources& sources, CallStorage& storage) {
+    storage.horizons.reset(storage.packed);
+    const auto pass = [&](Kind kind, const auto& source, std::size_t count, auto lanes) {
+      decide_in_window(kind, source, count, lanes, separation, conservative_rescaling, storage.horizons, storage,
+                       window, [&](std::size_t i, double tmax) {
+                         if (double toi = 1; rules::decide(kind, simd::query_at(source, i), toi, min_distance, tmax,
+                                                           tolerance, max_iterations, conservative_rescaling))
+                           window.lower_to(toi);
+                       });
     };
-    decide_survivors(lists.vertex_face, Kind::vertex_face, lists.survivors[0]);
-    decide_survivors(lists.edge_edge, Kind::edge_edge, lists.survivors[1]);
-    decide_survivors(lists.vertex_edge, Kind::vertex_edge, lists.survivors[2]);
-    decide_survivors(lists.vertex_vertex, Kind::vertex_vertex, lists.survivors[3]);
+    naming_bad_ids(mesh, candidates, [&] {
+      pass(Kind::vertex_face, sources.vertex_face, sources.counts[0], kernels.vertex_face);
+      pass(Kind::edge_edge, sources.edge_edge, sources.counts[1], kernels.edge_edge);
+      pass(Kind::vertex_edge, sources.vertex_edge, sources.counts[2], kernels.edge_edge);
+      pass(Kind::vertex_vertex, sources.vertex_vertex, sources.counts[3], kernels.edge_edge);
+    });
   });
   return window.earliest();
 }

@@ -98,36 +98,33 @@ class PackedPositions {
 
   // Rows [begin, end): callers may fill disjoint ranges in parallel.
   void pack(const PositionsView& t0, const PositionsView& t1, std::int64_t begin, std::int64_t end) {
-    bool finite = true, coarse = true;
-    double range_largest = 0;
     const auto columns = t0.cols();  // 2: a 2D mesh, in the plane z = 0
     t0.visit([&](const auto& start) {
       t1.visit([&](const auto& stop) {
-        for (std::int64_t v = begin; v < end; ++v) {
-          double* row = rows_.get() + row_start(v);
+        fill(begin, end, [&](std::int64_t v, double* row) {
           for (int c = 0; c < 3; ++c) {
             row[c] = c < columns ? start(v, c) : 0.0;
             row[c + 3] = c < columns ? stop(v, c) : 0.0;
           }
-          row[6] = row[7] = 0;
-          // x - x is 0 for finite x and a NaN otherwise, and so is the sum
-          // of a row's: one test a row, no branch per coordinate.
-          double zero = 0, largest = 0;
-          for (int c = 0; c < 6; ++c) zero += row[c] - row[c], largest = std::max(largest, std::fabs(row[c]));
-          finite &= zero == 0;
-          coarse &= largest <= kCoarseLimit;  // a NaN passes here, but not `finite`
-          range_largest = std::max(range_largest, largest);
-          pack_coarse(row, largest, coarse_.get() + row_start(v));
-        }
+        });
       });
     });
-    if (!finite) finite_.store(false, std::memory_order_relaxed);
-    if (!coarse) coarse_usable_.store(false, std::memory_order_relaxed);
-    // Non-negative doubles order as their bits do.
-    const auto bits = std::bit_cast<std::uint64_t>(range_largest);
-    std::uint64_t seen = largest_bits_.load(std::memory_order_relaxed);
-    while (seen < bits && !largest_bits_.compare_exchange_weak(seen, bits, std::memory_order_relaxed)) {
-    }
+  }
+
+  // Rows [begin, end) of the first part of `whole`'s step, [0, horizon]
+  // read as a step of its own: x at t0, then x0 + horizon (x1 - x0). For a
+  // power of two `horizon` <= 1, each coordinate at t1 errs by at most 3u of
+  // `whole`'s largest coordinate magnitude plus 2^-1074: the subtraction's
+  // rounding, the product's (exact unless subnormal) and the sum's. Callers
+  // may fill disjoint ranges in parallel.
+  void pack_within(const PackedPositions& whole, double horizon, std::int64_t begin, std::int64_t end) {
+    fill(begin, end, [&](std::int64_t v, double* row) {
+      const double* from = whole.rows_.get() + row_start(v);
+      for (int c = 0; c < 3; ++c) {
+        row[c] = from[c];
+        row[c + 3] = from[c] + horizon * (from[c + 3] - from[c]);
+      }
+    });
   }
 
   // The rows, once pack() has filled them all.
@@ -141,6 +138,34 @@ class PackedPositions {
 
  private:
   static constexpr double kCoarseLimit = 0x1p100;
+
+  // Rows [begin, end), each's six coordinates written by set(v, row), then
+  // its zeros, coarse row and what view() tells of all rows.
+  template <class Set>
+  void fill(std::int64_t begin, std::int64_t end, const Set& set) {
+    bool finite = true, coarse = true;
+    double range_largest = 0;
+    for (std::int64_t v = begin; v < end; ++v) {
+      double* row = rows_.get() + row_start(v);
+      set(v, row);
+      row[6] = row[7] = 0;
+      // x - x is 0 for finite x and a NaN otherwise, and so is the sum
+      // of a row's: one test a row, no branch per coordinate.
+      double zero = 0, largest = 0;
+      for (int c = 0; c < 6; ++c) zero += row[c] - row[c], largest = std::max(largest, std::fabs(row[c]));
+      finite &= zero == 0;
+      coarse &= largest <= kCoarseLimit;  // a NaN passes here, but not `finite`
+      range_largest = std::max(range_largest, largest);
+      pack_coarse(row, largest, coarse_.get() + row_start(v));
+    }
+    if (!finite) finite_.store(false, std::memory_order_relaxed);
+    if (!coarse) coarse_usable_.store(false, std::memory_order_relaxed);
+    // Non-negative doubles order as their bits do.
+    const auto bits = std::bit_cast<std::uint64_t>(range_largest);
+    std::uint64_t seen = largest_bits_.load(std::memory_order_relaxed);
+    while (seen < bits && !largest_bits_.compare_exchange_weak(seen, bits, std::memory_order_relaxed)) {
+    }
+  }
   // A row's floats, and e >= 2^-24 |x| + 2^-149 for its largest |x|: float
   // rounding to nearest errs by at most 2^-24 |x|, or 2^-150 below the
   // normal range. e rounded up. Beyond the limit (the coarse rows unused

@@ -19,16 +19,20 @@
 // speed. A 2D mesh (positions n x 2) is read as z = 0, as ipc-toolkit
 // reads 2D meshes.
 //
-// Each survivor is asked in a shrinking window: tmax just past the earliest
-// step found so far, divided by the rescaling (a retried step is rescaled
-// below its contact) plus twice the TOI tolerance (a TOI lies up to one
-// before its contact). The result does not depend on the thread count: a
-// survivor whose step counts (below the earliest so far) gets the step it
-// gets over [0, 1] (tests/test_shrinking_window.cpp), so the call returns
-// the minimum of the per-candidate answers whichever order threads find
-// them in (docs/design.md §12). Once a step of 0 is found (a pair within
-// min_distance at the start, or a coordinate not finite) the survivors left
-// are not asked: nothing lowers 0, so only the work done depends on order.
+// Candidates are filtered and asked batch by batch in a shrinking window:
+// tmax just past the earliest step found so far, divided by the rescaling
+// (a retried step is rescaled below its contact) plus twice the TOI
+// tolerance (a TOI lies up to one before its contact). Once that window is
+// below 1/16 of the step, the filters cull over the window's part of the
+// step alone (the first 16^-1, 16^-2 or 16^-3), where nearly every
+// candidate is culled by the first test. The result does not depend on the
+// thread count: a candidate whose step counts (below the earliest so far)
+// gets the step it gets over [0, 1] (tests/test_shrinking_window.cpp), so
+// the call returns the minimum of the per-candidate answers whichever order
+// threads find them in (docs/design.md §12). Once a step of 0 is found (a
+// pair within min_distance at the start, or a coordinate not finite) the
+// candidates left are not asked, only their ids checked: nothing lowers 0,
+// so only the work done depends on order.
 //
 // Bad input: std::invalid_argument naming the argument, as ipc.hpp's calls
 // and mesh_ccd (batch.hpp) refuse it, before anything is evaluated. A NaN
