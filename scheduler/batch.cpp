@@ -109,7 +109,8 @@ struct CallStorage {
   simd::PackedFaces faces;
   std::vector<std::array<int, 4>> point_pairs;
   std::vector<Query> lifted_queries;  // a 2D call's queries in the plane z = 0
-  Horizons horizons;                   // the collision-free step's packed rows over part of the step
+  Horizons horizons;                        // packed rows over the part of the step a window leaves open
+  std::vector<double> grown_separations;    // per-candidate separations plus the horizons' margin
   bool in_use = false;
 };
 
@@ -489,6 +490,16 @@ void naming_bad_ids(const MeshView& mesh, const CandidateLists& candidates, cons
   }
 }
 
+// The four lists' separations, checked.
+std::array<Separations, 4> list_separations(const CandidateLists& candidates, const MinDistances& min_distances,
+                                            const Options& options, const lab::Settings& lab) {
+  return {separations_of(min_distances.vertex_face, candidates.vertex_face.size(), "vertex-face", options, lab),
+          separations_of(min_distances.edge_edge, candidates.edge_edge.size(), "edge-edge", options, lab),
+          separations_of(min_distances.vertex_edge, candidates.vertex_edge.size(), "vertex-edge", options, lab),
+          separations_of(min_distances.vertex_vertex, candidates.vertex_vertex.size(), "vertex-vertex", options,
+                         lab)};
+}
+
 // A mesh call's four lists once the lane filters have run: the sources,
 // their separations, and their survivors (all of them for the unfiltered
 // baseline: `filtered` false).
@@ -513,11 +524,7 @@ void filter_mesh(const MeshView& mesh, const CandidateLists& candidates, const M
   validate(options, lab);
   const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
   const bool filtered = decider_of(options, lab) != Decider::cubic;  // the baseline runs unfiltered
-  const std::array<Separations, 4> separations{
-      separations_of(min_distances.vertex_face, candidates.vertex_face.size(), "vertex-face", options, lab),
-      separations_of(min_distances.edge_edge, candidates.edge_edge.size(), "edge-edge", options, lab),
-      separations_of(min_distances.vertex_edge, candidates.vertex_edge.size(), "vertex-edge", options, lab),
-      separations_of(min_distances.vertex_vertex, candidates.vertex_vertex.size(), "vertex-vertex", options, lab)};
+  const std::array<Separations, 4> separations = list_separations(candidates, min_distances, options, lab);
   with_mesh_sources(mesh, candidates, options, filtered, [&](const MeshSources& sources, CallStorage& storage) {
     const auto& counts = sources.counts;
     Partials partials(storage.partials);
@@ -539,39 +546,75 @@ void filter_mesh(const MeshView& mesh, const CandidateLists& candidates, const M
   });
 }
 
-// The collision-free step's pass over one list (ipc::collision_free_stepsize):
-// batch by batch, the lane filters at `separation` over the part of the step
-// the window still asks about (Horizons), and at once `decide(i, tmax)` for
-// each survivor i, with tmax the window's. Once the window is closed (a
-// step of 0), the batches left only have their ids checked.
-template <class Source, class Decide>
-void decide_in_window(Kind kind, const Source& whole, std::size_t count, simd::FilterFunction<Source> lanes,
-                      double separation, double conservative_rescaling, Horizons& horizons, CallStorage& storage,
-                      ShrinkingWindow& window, const Decide& decide) {
-  reference::FilterSettings settings = reference::settings_for(kind, reference::filter_settings(Options{}, {}));
-  settings.within = true;
+// One list of an earliest-TOI-only call, filtered and asked batch by batch
+// (docs/design.md §12): each batch through the lane filters (`settings`,
+// at `separations`) over the part of the step the window still asks about,
+// then at once `decide(i, tmax, partial)` for each survivor i, tmax the
+// window's (`tmax_of(earliest)`). `narrow`: the filters may take the
+// horizons' rows (certified filters only: they add a margin for the rows'
+// rounding). Once the window is closed (a contact at 0) the batches left
+// only have their ids checked and their candidates with a coordinate that
+// is not finite counted as invalid: nothing lowers 0.
+template <class Source, class TmaxOf, class Decide>
+void filter_in_window(Kind kind, const Source& whole, std::size_t count, simd::FilterFunction<Source> lanes,
+                      reference::FilterSettings settings, const Separations& separations, bool narrow,
+                      CallStorage& storage, Partials& partials, ShrinkingWindow& window, const TmaxOf& tmax_of,
+                      const Decide& decide) {
+  settings = reference::settings_for(kind, settings);
+  settings.within = separations.any();
+  settings.min_distance = separations.all;
+  settings.min_distances = separations.each;
   const std::size_t batches = (count + simd::kFilterBatch - 1) / simd::kFilterBatch;
   if (storage.kept_in_batch.size() < count) storage.kept_in_batch.resize(count);
+  if (separations.each != nullptr && storage.grown_separations.size() < count)
+    storage.grown_separations.resize(count);
+  partials.local().counters.candidates += static_cast<std::int64_t>(count);
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, batches, 1),
       [&](const tbb::blocked_range<std::size_t>& range) {
         for (std::size_t batch = range.begin(); batch < range.end(); ++batch) {
           const std::size_t begin = batch * simd::kFilterBatch, end = std::min(count, begin + simd::kFilterBatch);
-          if (!(window.earliest() > 0)) {  // closed: nothing lowers 0
+          Counters& counters = partials.local().counters;
+          if (!(window.earliest() > 0)) {  // closed
             for (std::size_t i = begin; i < end; ++i) simd::row_starts(whole, i);
+            if (!whole.positions.finite)
+              for (std::size_t i = begin; i < end; ++i)
+                counters.invalid += !reference::all_finite(simd::query_at(whole, i));
             continue;
           }
-          const Horizons::Rows rows = horizons.over(ipc_window_tmax(window.earliest(), conservative_rescaling));
           Source within = whole;
-          within.positions = rows.positions;
           reference::FilterSettings own = settings;
-          // Rounded up: the margin may be far below the separation's ulp.
-          own.min_distance = rows.margin > 0 ? std::nextafter(separation + rows.margin, HUGE_VAL) : separation;
+          if (narrow) {
+            const Horizons::Rows rows = storage.horizons.over(tmax_of(window.earliest()));
+            within.positions = rows.positions;
+            if (rows.margin > 0) {
+              // The margin added, rounded up: it may lie far below a separation's ulp.
+              const auto grown = [&](double s) { return std::nextafter(s + rows.margin, HUGE_VAL); };
+              own.within = true;
+              own.min_distance = grown(separations.all);
+              if (separations.each != nullptr) {
+                for (std::size_t i = begin; i < end; ++i)
+                  storage.grown_separations[i] = grown(separations.each[i]);
+                own.min_distances = storage.grown_separations.data();
+              }
+            }
+          }
           simd::FilterCounts culls;
           std::uint32_t* kept = storage.kept_in_batch.data() + begin;
           const std::size_t survivors = lanes(within, begin, end, own, kept, culls);
-          for (std::size_t j = 0; j < survivors && window.earliest() > 0; ++j)
-            decide(begin + kept[j], ipc_window_tmax(window.earliest(), conservative_rescaling));
+          counters.culled += static_cast<std::int64_t>(end - begin - survivors);
+          counters.culled_by_sign += static_cast<std::int64_t>(culls.sign);
+          counters.culled_by_separation += static_cast<std::int64_t>(culls.separation);
+          counters.culled_by_pieces += static_cast<std::int64_t>(culls.pieces);
+          counters.culled_by_swept_box += static_cast<std::int64_t>(culls.swept_box);
+          for (std::size_t j = 0; j < survivors; ++j) {
+            const std::size_t i = begin + kept[j];
+            if (!(window.earliest() > 0)) {
+              counters.invalid += !reference::all_finite(simd::query_at(whole, i));
+              continue;
+            }
+            decide(i, tmax_of(window.earliest()), partials.local());
+          }
         }
       },
       tbb::simple_partitioner());
@@ -579,22 +622,67 @@ void decide_in_window(Kind kind, const Source& whole, std::size_t count, simd::F
 
 }  // namespace
 
+namespace {
+
+// A filtered mesh call that asks only for the earliest TOI: every list
+// filtered and asked batch by batch in one shrinking window
+// (filter_in_window), each survivor as the scalar path asks it.
+void mesh_earliest_toi(const MeshView& mesh, const CandidateLists& candidates, const MinDistances& min_distances,
+                       const Options& options, const lab::Settings& lab, BatchResult& out) {
+  validate(options, lab);
+  const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
+  const std::array<Separations, 4> separations = list_separations(candidates, min_distances, options, lab);
+  const bool certified = decider_of(options, lab) != Decider::fast;
+  ShrinkingWindow window(options.tmax);
+  const auto tmax_of = [&](double earliest) { return window_tmax(earliest, options); };
+  with_mesh_sources(mesh, candidates, options, true, [&](const MeshSources& sources, CallStorage& storage) {
+    storage.horizons.reset(storage.packed);
+    Partials partials(storage.partials);
+    const auto& counts = sources.counts;
+    const auto pass = [&](Kind kind, const auto& source, auto lanes, int list) {
+      const Separations& separation = separations[static_cast<std::size_t>(list)];
+      filter_in_window(kind, source, counts[static_cast<std::size_t>(list)], lanes,
+                       reference::filter_settings(options, lab), separation, certified, storage, partials, window,
+                       tmax_of, [&](std::size_t i, double tmax, Partial& partial) {
+                         Options own = options;
+                         own.min_distance = separation.at(i);
+                         own.tmax = tmax;
+                         const reference::Evaluation e =
+                             reference::evaluate_query(source.kind, simd::query_at(source, i), own, lab, true);
+                         if (e.result.hit) window.lower_to(e.result.toi);
+                         tally(e, partial);
+                       });
+    };
+    naming_bad_ids(mesh, candidates, [&] {
+      pass(Kind::vertex_face, sources.vertex_face, kernels.vertex_face, 0);
+      pass(Kind::edge_edge, sources.edge_edge, kernels.edge_edge, 1);
+      pass(Kind::vertex_edge, sources.vertex_edge, kernels.edge_edge, 2);
+      pass(Kind::vertex_vertex, sources.vertex_vertex, kernels.edge_edge, 3);
+    });
+    reset(out, counts[0] + counts[1] + counts[2] + counts[3], options);
+    combine(partials, out);
+  });
+}
+
+}  // namespace
+
 void lab::mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const MinDistances& min_distances,
                    const Options& options, const Settings& lab, BatchResult& out) {
+  if (decider_of(options, lab) != Decider::cubic && earliest_toi_only(options)) {
+    mesh_earliest_toi(mesh, candidates, min_distances, options, lab, out);
+    return;
+  }
   filter_mesh(mesh, candidates, min_distances, options, lab, [&](FilteredMesh& lists, Partials& partials) {
     const auto& [vertex_face, edge_edge, vertex_edge, vertex_vertex] = lists.counts;
     reset(out, vertex_face + edge_edge + vertex_edge + vertex_vertex, options);
     const auto solved = [&](int list) { return lists.filtered ? &lists.survivors[list] : nullptr; };
-    ShrinkingWindow shared(options.tmax);  // one window over the four lists
-    ShrinkingWindow* window = lists.filtered && earliest_toi_only(options) ? &shared : nullptr;
-    solve_source(lists.vertex_face, vertex_face, solved(0), options, lab, lists.separations[0], 0, out, partials,
-                 window);
+    solve_source(lists.vertex_face, vertex_face, solved(0), options, lab, lists.separations[0], 0, out, partials);
     solve_source(lists.edge_edge, edge_edge, solved(1), options, lab, lists.separations[1], vertex_face, out,
-                 partials, window);
+                 partials);
     solve_source(lists.vertex_edge, vertex_edge, solved(2), options, lab, lists.separations[2],
-                 vertex_face + edge_edge, out, partials, window);
+                 vertex_face + edge_edge, out, partials);
     solve_source(lists.vertex_vertex, vertex_vertex, solved(3), options, lab, lists.separations[3],
-                 vertex_face + edge_edge + vertex_edge, out, partials, window);
+                 vertex_face + edge_edge + vertex_edge, out, partials);
     combine(partials, out);
   });
   sort_hits(out);
@@ -629,16 +717,19 @@ double ipc::collision_free_stepsize(const MeshView& mesh, const CandidateLists& 
   // The lanes cull at the largest separation a candidate may ask for, plus
   // the distance tolerance: a culled candidate cannot even come within the
   // band where a per-query call may report a contact it did not prove.
-  const double separation = min_distance + rules::kLargestRescalingSeparation + tolerance;
+  const Separations separation{min_distance + rules::kLargestRescalingSeparation + tolerance};
   Options options;
   options.threads = threads;
   const simd::FilterKernels& kernels = simd::filter_kernels(options.isa);
+  const reference::FilterSettings settings = reference::filter_settings(options, {});
   ShrinkingWindow window(1.0);
+  const auto tmax_of = [&](double earliest) { return ipc_window_tmax(earliest, conservative_rescaling); };
   with_mesh_sources(mesh, candidates, options, true, [&](const MeshSources& sources, CallStorage& storage) {
     storage.horizons.reset(storage.packed);
+    Partials partials(storage.partials);
     const auto pass = [&](Kind kind, const auto& source, std::size_t count, auto lanes) {
-      decide_in_window(kind, source, count, lanes, separation, conservative_rescaling, storage.horizons, storage,
-                       window, [&](std::size_t i, double tmax) {
+      filter_in_window(kind, source, count, lanes, settings, separation, true, storage, partials, window, tmax_of,
+                       [&](std::size_t i, double tmax, Partial&) {
                          if (double toi = 1; rules::decide(kind, simd::query_at(source, i), toi, min_distance, tmax,
                                                            tolerance, max_iterations, conservative_rescaling))
                            window.lower_to(toi);

@@ -12,6 +12,7 @@
 
 #include "batchccd/batchccd.hpp"
 #include "broad_phase.hpp"
+#include "falling_contacts.hpp"
 #include "scenes.hpp"
 
 namespace batchccd {
@@ -139,79 +140,23 @@ TEST(CollisionFreeStepsize, Planar2DMeshesEqualThePerQueryCalls) {
   }
 }
 
-// Contacts at falling times, one at the start of each batch of the lane
-// filters (simd::kFilterBatch candidates) and the rest of the batch far
-// apart: each batch is filtered over the part of the step the contacts
-// before it left open (horizons of 1, 16^-1, 16^-2 and 16^-3), and the
-// call must still find the next, earlier contact. Every kind, in the order
-// the call takes the lists; every prefix of the contacts, so that each is
-// the earliest once.
+// Contacts at falling times (falling_contacts.hpp), each the earliest once:
+// filtered over the part of the step the ones before left open, the call
+// must still find it.
 TEST(CollisionFreeStepsize, FiltersOverTheOpenPartOfTheStepMissNoEarlierContact) {
-  // Contact times by list (vertex-face, edge-edge, vertex-edge,
-  // vertex-vertex), each 0.6 of the one before: the windows they leave cross
-  // every horizon, and each contact lies less than half a window before the
-  // end of the window it is filtered in.
-  std::vector<std::vector<double>> times(4);
-  double time = 0.6;
-  for (auto& list : times)
-    for (int k = 0; k < 5; ++k, time *= 0.6) list.push_back(time);
-  constexpr std::size_t batch = 2048;
+  const std::vector<std::vector<double>> times = testing::falling_contact_times();
   for (std::size_t last_list = 0; last_list < times.size(); ++last_list)
     for (std::size_t last = 0; last < times[last_list].size(); ++last) {
-      // Vertices 0-4: a static face (0, 1, 2), an edge (3, 4) and a vertex
-      // (0) far from vertex 5, the point all filler candidates pair with
-      // them; then each contact's own vertices, 10 apart along x.
-      std::vector<Eigen::RowVector3d> start{{-100, 0, 0}, {-99, 0, 0}, {-100, 1, 0}, {-100, 0, 1},
-                                            {-99, 1, 1},  {-50, 0, 5}};
-      std::vector<double> drop(start.size(), 0);  // how far each vertex falls over the step
-      std::vector<std::array<int, 3>> faces{{0, 1, 2}};
-      Candidates candidates;
-      const auto add = [&](Eigen::RowVector3d point, double fall) {
-        start.push_back(point);
-        drop.push_back(fall);
-        return static_cast<int>(start.size()) - 1;
-      };
-      for (std::size_t list = 0; list <= last_list; ++list)
-        for (std::size_t k = 0; k < times[list].size() && (list < last_list || k <= last); ++k) {
-          const double x = 10.0 * static_cast<double>(start.size()), fall = 0.5 / times[list][k];
-          // The moving part starts 0.5 above the static one and meets it at times[list][k].
-          if (list == 0) {
-            faces.push_back({add({x, 0, 0}, 0), add({x + 1, 0, 0}, 0), add({x, 1, 0}, 0)});
-            candidates.vertex_face.push_back({add({x + 0.25, 0.25, 0.5}, fall), static_cast<int>(faces.size()) - 1});
-            candidates.vertex_face.resize(candidates.vertex_face.size() + batch - 1, {5, 0});
-          } else if (list == 1) {
-            const int a = add({x, -0.5, 0}, 0), b = add({x, 0.5, 0}, 0);
-            candidates.edge_edge.push_back({a, b, add({x - 0.5, 0, 0.5}, fall), add({x + 0.5, 0, 0.5}, fall)});
-            candidates.edge_edge.resize(candidates.edge_edge.size() + batch - 1, {3, 4, 5, 5});
-          } else if (list == 2) {
-            const int a = add({x - 0.5, 0, 0}, 0), b = add({x + 0.5, 0, 0}, 0);
-            candidates.vertex_edge.push_back({add({x, 0, 0.5}, fall), a, b});
-            candidates.vertex_edge.resize(candidates.vertex_edge.size() + batch - 1, {5, 3, 4});
-          } else {
-            const int a = add({x, 0, 0}, 0);
-            candidates.vertex_vertex.push_back({add({x, 0, 0.5}, fall), a});
-            candidates.vertex_vertex.resize(candidates.vertex_vertex.size() + batch - 1, {5, 0});
-          }
-        }
-      const auto n = static_cast<Eigen::Index>(start.size());
-      Eigen::MatrixXd x0(n, 3), x1(n, 3);
-      for (Eigen::Index v = 0; v < n; ++v) {
-        x0.row(v) = start[static_cast<std::size_t>(v)];
-        x1.row(v) = x0.row(v) - Eigen::RowVector3d(0, 0, drop[static_cast<std::size_t>(v)]);
-      }
-      Eigen::MatrixXi face_rows(static_cast<Eigen::Index>(faces.size()), 3);
-      for (std::size_t f = 0; f < faces.size(); ++f)
-        face_rows.row(static_cast<Eigen::Index>(f)) << faces[f][0], faces[f][1], faces[f][2];
-      const MeshView mesh{x0, x1, face_rows};
+      const testing::FallingContacts scene = testing::falling_contacts(last_list, last);
       for (const double separation : {0.0, 1e-3}) {
         SCOPED_TRACE(::testing::Message() << "earliest at " << times[last_list][last] << " min_distance "
                                           << separation);
-        const double expected = per_query_minimum(mesh, candidates, separation);
+        const double expected = per_query_minimum(scene.view(), scene.candidates, separation);
         EXPECT_LT(expected, times[last_list][last]);
         EXPECT_GT(expected, 0.5 * times[last_list][last]);
         for (const int threads : {1, 2})
-          EXPECT_EQ(ipc::collision_free_stepsize(mesh, candidates, separation, ipc::DEFAULT_CCD_TOLERANCE,
-                                                 ipc::DEFAULT_CCD_MAX_ITERATIONS,
+          EXPECT_EQ(ipc::collision_free_stepsize(scene.view(), scene.candidates, separation,
+                                                 ipc::DEFAULT_CCD_TOLERANCE, ipc::DEFAULT_CCD_MAX_ITERATIONS,
                                                  ipc::DEFAULT_CCD_CONSERVATIVE_RESCALING, threads),
                     expected)
               << threads << " threads";

@@ -17,6 +17,7 @@
 #include "broad_phase.hpp"
 #include "ipc_rules.hpp"
 #include "query_builders.hpp"
+#include "falling_contacts.hpp"
 #include "scenes.hpp"
 #include "scheduler/shrinking_window.hpp"
 
@@ -216,6 +217,45 @@ TEST(ShrinkingWindow, MeshCcdsEarliestToiIsTheMinimumOfItsResults) {
         }
   EXPECT_GE(with_contact, 20);
   EXPECT_GE(shrunk, with_contact / 2) << "the window should spare most calls with contacts some of their hits";
+}
+
+// Contacts at falling times (falling_contacts.hpp), each the earliest once:
+// mesh_ccd asked for the earliest TOI only filters each batch over the part
+// of the step the contacts before it left open, and must still find it, in
+// every mode, with and without separations (one for all, one per candidate).
+TEST(ShrinkingWindow, MeshCcdFiltersOverTheOpenPartOfTheStepMissNoEarlierContact) {
+  const std::vector<std::vector<double>> times = testing::falling_contact_times();
+  for (std::size_t last_list = 0; last_list < times.size(); ++last_list)
+    for (std::size_t last = 0; last < times[last_list].size(); ++last) {
+      const testing::FallingContacts scene = testing::falling_contacts(last_list, last);
+      const CandidateLists& lists = scene.candidates;
+      const auto each = [](std::size_t count, double s) { return std::vector<double>(count, s); };
+      const std::vector<double> vf = each(lists.vertex_face.size(), 1e-3), ee = each(lists.edge_edge.size(), 2e-3),
+                                ve = each(lists.vertex_edge.size(), 1e-3), vv = each(lists.vertex_vertex.size(), 0);
+      for (const Mode mode : {Mode::conservative, Mode::exact})
+        for (const bool per_candidate : {false, true}) {
+          SCOPED_TRACE(::testing::Message() << "earliest at " << times[last_list][last] << ' ' << to_string(mode)
+                                            << (per_candidate ? " per-candidate separations" : ""));
+          const MinDistances separations =
+              per_candidate ? MinDistances{vf, ee, ve, vv} : MinDistances{};
+          Options options;
+          options.mode = mode;
+          BatchResult full;
+          mesh_ccd(scene.view(), lists, separations, options, full);
+          double minimum = std::numeric_limits<double>::infinity();
+          for (const QueryResult& result : full.results)
+            if (result.hit) minimum = std::min(minimum, result.toi);
+          EXPECT_LT(minimum, times[last_list][last]);
+          options.per_candidate_results = false;
+          for (const int threads : {1, 2}) {
+            options.threads = threads;
+            BatchResult earliest;
+            mesh_ccd(scene.view(), lists, separations, options, earliest);
+            EXPECT_EQ(earliest.earliest_toi, minimum) << threads << " threads";
+            EXPECT_EQ(earliest.counters.candidates, full.counters.candidates);
+          }
+        }
+    }
 }
 
 }  // namespace

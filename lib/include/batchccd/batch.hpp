@@ -68,15 +68,17 @@ struct BatchResult {
 
 // Earliest-TOI-only calls: with Options::per_candidate_results and
 // Options::hit_list false (and need_toi true), nothing but the earliest TOI
-// is asked for, and the survivors of the lane filters are asked in a
-// shrinking window: once a contact at t is known, a survivor is asked over
-// [0, t] only, its solver stops at t, and none is asked once t is 0
-// (docs/design.md §12). earliest_toi is the minimum of what the per-candidate
-// results would hold, for any thread count. The counters of the solver's
-// part -- solved, hits, undecided, exact_escalations and the times -- then
-// count what was asked before the window closed, and depend on the thread
-// count and on the order in which threads find contacts; candidates, the
-// culls and invalid do not.
+// is asked for, and a mesh call filters and asks its candidates batch by
+// batch in a shrinking window: once a contact at t is known, a candidate is
+// filtered over the first 1/16, 1/256 or 1/4096 of the step where t lies
+// within it (certified modes), a survivor is asked over [0, t] only and its
+// solver stops at t, and none is asked once t is 0 (docs/design.md §12).
+// A raw-query call filters first and asks its survivors in the same window.
+// earliest_toi is the minimum of what the per-candidate results would hold,
+// for any thread count. The culls and the solver's counters -- solved,
+// hits, undecided, exact_escalations and the times -- then count what the
+// window let through, and depend on the thread count and on the order in
+// which threads find contacts; candidates and invalid do not.
 
 // The instruction set a batch call with `requested` runs: automatic picks
 // the best this processor and build have. Throws std::invalid_argument when
