@@ -367,8 +367,11 @@ bool run_report(const ReportSettings& settings, std::ostream& out, std::ostream&
     }
   }
   progress.clear();
-  out << "batchccd_report report: " << csv_rows.size() / std::max<std::size_t>(1, totals.size())
-      << " inputs, " << candidates << " candidates; ground truth from the files"
+  // The plot's title says what was compared, as the text's first line does.
+  const std::string compared = "batchccd_report report: " +
+                               std::to_string(csv_rows.size() / std::max<std::size_t>(1, totals.size())) +
+                               " inputs, " + std::to_string(candidates) + " candidates";
+  out << compared << "; ground truth from the files"
       << (without_truth > 0 ? " (exact mode's decisions for " + std::to_string(without_truth) +
                                   " candidates without)"
                             : "")
@@ -376,7 +379,7 @@ bool run_report(const ReportSettings& settings, std::ostream& out, std::ostream&
       << method_legend() << '\n';
   print_comparison(out, totals);
   for (const MethodTally& t : totals) csv_rows.emplace_back("total", t);
-  if (settings.out) write_outputs(*settings.out, "batchccd_report report", csv_rows, nullptr, out);
+  if (settings.out) write_outputs(*settings.out, compared, csv_rows, nullptr, out);
   return all_read;
 }
 

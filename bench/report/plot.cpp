@@ -43,7 +43,7 @@ std::string points_against_time(std::string_view y) {
          "       with points pt marker(i) ps 2.2 lw 2 lc rgb colour(i) notitle, \\\n" +
          "     " + each + "(" + is_total + " ? $3 : time_low):(" + std::string(y) + "):(" + is_total +
          " ? word(methods, i) : '') \\\n" +
-         "       with labels center offset 0, name_line(i) textcolor rgb colour(i) notitle\n";
+         "       with labels boxed center offset 0, name_line(i) textcolor rgb colour(i) notitle\n";
 }
 
 }  // namespace
@@ -70,9 +70,9 @@ std::string plot_script(std::string_view title, const fs::path& csv, const fs::p
   s << "# Draws " << csv.string() << " (batchccd_report's CSV) into " << png.string()
     << ": gnuplot plot.gp\n"
     << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
-    << "  set terminal pngcairo size 1500,560 font 'sans,11'\n"
+    << "  set terminal pngcairo size 1500,600 font 'sans,11'\n"
     << "} else {\n"
-    << "  set terminal png size 1500,560\n"
+    << "  set terminal png size 1500,600\n"
     << "}\n"
     << "set output " << gnuplot_string(png.string()) << "\n"
     << "set datafile separator comma\n"
@@ -81,7 +81,9 @@ std::string plot_script(std::string_view title, const fs::path& csv, const fs::p
     << "# One colour and open marker per method, all of one size. Each point carries\n"
     << "# its method's name, the first three methods' above it, the next three's below,\n"
     << "# each on a line of its own: the names of methods on one point (exact,\n"
-    << "# conservative and fast, often) stay apart.\n"
+    << "# conservative and fast, often) stay apart; an opaque box keeps the grid and\n"
+    << "# the zero row's break from striking through a name. A legend row under\n"
+    << "# the panels pairs every marker with its name, wherever the names land.\n"
     << "colours = '#000000 #d62728 #1f77b4 #2ca02c #ff7f0e #9467bd #8c564b #e377c2'\n"
     << "colour(i) = word(colours, (i - 1) % 8 + 1)\n"
     << "marker(i) = word('6 4 8 10 12 14 1 2', (i - 1) % 8 + 1) + 0\n"
@@ -109,7 +111,14 @@ std::string plot_script(std::string_view title, const fs::path& csv, const fs::p
     << "set format y '10^{%L}'\n"
     << "set xrange [time_low : time_high]\n"
     << "set xlabel 'run time [s]'\n"
+    << "set bmargin 5\n"
+    << "set style textbox opaque noborder\n"
     << "set multiplot layout 1,3 title " << gnuplot_string(title) << " noenhanced\n"
+    << "legend_x(i) = 0.5 + (i - (words(methods) + 1) / 2.0) * 0.11\n"
+    << "do for [i = 1 : words(methods)] {\n"
+    << "  set label 100 + i word(methods, i) at screen legend_x(i), screen 0.035 left offset 1.5, 0 \\\n"
+    << "    point pt marker(i) ps 2.2 lw 2 lc rgb colour(i) textcolor rgb colour(i) noenhanced\n"
+    << "}\n"
     << "set ylabel 'candidates'\n"
     << "set ytics 1, 10\n"
     << "set ytics add ('0' count_zero)\n"
@@ -117,6 +126,7 @@ std::string plot_script(std::string_view title, const fs::path& csv, const fs::p
     << "set arrow 1 from graph 0, first sqrt(count_zero) to graph 1, first sqrt(count_zero) nohead dt 2 lc rgb '#808080'\n"
     << "set title 'false negatives (contacts missed)'\n"
     << points_against_time("count($8)")
+    << "do for [i = 1 : words(methods)] { unset label 100 + i }\n"
     << "set title 'false positives (reported contacts that are none)'\n"
     << points_against_time("count($9)")
     << "set title 'largest TOI error against exact mode'\n"

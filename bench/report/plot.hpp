@@ -9,7 +9,8 @@
 // The comparison's picture, drawn by gnuplot from the CSV the report writes
 // (comparison_format.hpp): three panels, false negatives, false positives and
 // the largest TOI error, each against run time, log axes, one point per
-// method of the CSV's "total" rows, each point named beside its marker.
+// method of the CSV's "total" rows, each point named beside its marker, and
+// a legend row under the panels pairing every marker with its method.
 namespace batchccd::bench {
 
 // The gnuplot executable on PATH; std::nullopt when there is none.

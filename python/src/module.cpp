@@ -40,6 +40,24 @@ constexpr std::pair<std::string_view, std::string_view> kPythonNames[] = {
     {"batchccd::ipc::", "batchccd.ipc."},  // ipc.hpp's calls: this module's batchccd.ipc
 };
 
+// A per-candidate separation is one value of the argument min_distances;
+// the library names it "<list> candidate <i>: min_distance must be ...".
+// Elsewhere min_distance is Python's name too (the keyword, ipc's argument).
+void name_candidate_separations(std::string& message) {
+  constexpr std::string_view library_name = ": min_distance must be";
+  constexpr std::string_view python_name = ": its value in min_distances must be";
+  constexpr std::string_view candidate = "candidate ";
+  for (std::size_t at = message.find(library_name); at != std::string::npos;
+       at = message.find(library_name, at + 1)) {
+    std::size_t digits = at;
+    while (digits > 0 && message[digits - 1] >= '0' && message[digits - 1] <= '9') --digits;
+    if (digits == at || digits < candidate.size() ||
+        message.compare(digits - candidate.size(), candidate.size(), candidate) != 0)
+      continue;
+    message.replace(at, library_name.size(), python_name);
+  }
+}
+
 std::string in_python_names(std::string message) {
   constexpr std::string_view library_prefix = "batchccd: ";
   if (message.starts_with(library_prefix)) message.erase(0, library_prefix.size());
@@ -47,6 +65,7 @@ std::string in_python_names(std::string message) {
     for (std::size_t at = message.find(library_name); at != std::string::npos;
          at = message.find(library_name, at + python_name.size()))
       message.replace(at, library_name.size(), python_name);
+  name_candidate_separations(message);
   return message;
 }
 

@@ -129,7 +129,7 @@ def test_bad_options():
         batchccd.batch_ccd("vf", q, need_toi=1)
     with pytest.raises(TypeError, match="threads must be an int"):
         batchccd.batch_ccd("vf", q, threads="two")
-    with pytest.raises(ValueError, match="candidate 0: min_distance must be >= 0 and finite, got nan"):
+    with pytest.raises(ValueError, match="candidate 0: its value in min_distances must be >= 0 and finite, got nan"):
         batchccd.batch_ccd("vf", q, np.array([np.nan]))
     with pytest.raises(ValueError):
         batchccd.make_query("ve", np.zeros((4, 3)), np.zeros((4, 3)))

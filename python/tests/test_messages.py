@@ -50,6 +50,25 @@ def test_options_are_named_as_the_keywords():
         assert str(window.value) == "option tmax must be in (0, 1], got 1.5", name
 
 
+def test_per_candidate_separations_are_named_as_the_argument():
+    x0, x1, faces, vf = falling_point()
+    calls = {
+        "mesh_ccd, a dict": lambda d: batchccd.mesh_ccd(x0, x1, faces, vertex_face=vf,
+                                                        min_distances={"vertex_face": [d]}),
+        "mesh_ccd, one array": lambda d: batchccd.mesh_ccd(x0, x1, faces, vertex_face=vf, min_distances=[d]),
+        "batch_ccd": lambda d: batchccd.batch_ccd("vf", np.zeros((1, 8, 3)), [d]),
+    }
+    for name, call in calls.items():
+        with pytest.raises(ValueError) as separation:
+            call(-1.0)
+        message = str(separation.value)
+        assert "candidate 0: its value in min_distances must be >= 0 and finite" in message, (name, message)
+        assert library_names_absent(message), (name, message)
+    # The keyword min_distance keeps its own name.
+    with pytest.raises(ValueError, match="^option min_distance must be"):
+        batchccd.batch_ccd("vf", np.zeros((1, 8, 3)), [0.0], min_distance=-1.0)
+
+
 def test_ipc_errors_name_the_python_module():
     with pytest.raises(ValueError) as bad:
         batchccd.ipc.point_point_ccd([0, 0, 0], [1, 1, 1], [0, 0, 0], [1, 1, 1], min_distance=-1.0)
