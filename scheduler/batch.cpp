@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
 #include <string>
@@ -321,9 +322,12 @@ Separations separations_of(std::span<const double> each, std::size_t count, cons
                                 std::to_string(each.size()) + " values for " + std::to_string(count) +
                                 " candidates");
   for (std::size_t i = 0; i < each.size(); ++i)
-    if (const char* expected = separation_problem(each[i], decider_of(options, lab)))
-      throw std::invalid_argument(std::string("batchccd: ") + list + " candidate " + std::to_string(i) +
-                                  ": min_distance must be " + expected + ", got " + std::to_string(each[i]));
+    if (const char* expected = separation_problem(each[i], decider_of(options, lab))) {
+      std::ostringstream message;  // the value as the caller wrote it: -1, not -1.000000
+      message << "batchccd: " << list << " candidate " << i << ": min_distance must be " << expected << ", got "
+              << each[i];
+      throw std::invalid_argument(message.str());
+    }
   // Separation 0 for every candidate is the call without a separation: the
   // filters' separation variants would change the fast baseline's answers.
   if (std::all_of(each.begin(), each.end(), [](double s) { return s == 0; })) return {0, nullptr};

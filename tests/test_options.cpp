@@ -281,7 +281,9 @@ TEST(MeshMinDistances, WrongLengthOrBadValueRefusesTheCall) {
   expect_refused({.vertex_edge = four}, {"vertex-edge min_distances", "4 values for 2 candidates"});
   expect_refused({.vertex_vertex = two}, {"vertex-vertex min_distances", "2 values for 3 candidates"});
   const std::vector<double> negative = {0.1, -0.5}, nan = {kNaN, 0.1, 0.1}, infinite = {0.1, kInfinity};
-  expect_refused({.edge_edge = negative}, {"edge-edge candidate 1", "-0.5"});
+  expect_refused({.edge_edge = negative}, {"edge-edge candidate 1", "got -0.5"});
+  const std::vector<double> minus_one = {0.1, 0.1, -1};
+  expect_refused({.vertex_face = minus_one}, {"vertex-face candidate 2: min_distance must be >= 0 and finite, got -1"});
   expect_refused({.vertex_vertex = nan}, {"vertex-vertex candidate 0", "nan"});
   expect_refused({.vertex_edge = infinite}, {"vertex-edge candidate 1", "inf"});
   // Even for a list the options switch off.
