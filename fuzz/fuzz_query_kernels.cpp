@@ -18,7 +18,10 @@
 //   decision in exact mode; a separation is scaled with the query;
 // - batch_ccd and mesh_ccd, in every instruction set this machine runs,
 //   give each query the decision query_ccd (the scalar reference) gives it
-//   alone, with consistent counters (with one separation per candidate).
+//   alone, with consistent counters (with one separation per candidate);
+// - mesh_ccd asked for the earliest TOI only, its window narrowed by a
+//   first batch of contacts just above the records' earliest, gives the
+//   minimum of its per-candidate results (check_earliest_in_window).
 // Scaling, the batch entry points, the separation and the time window come
 // in one configuration per input, picked by its setup byte (kernel_input.hpp).
 
@@ -26,6 +29,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <optional>
 #include <span>
@@ -224,6 +228,65 @@ RecordMesh as_mesh(Kind kind, std::span<const Query> queries) {
   return mesh;
 }
 
+// The earliest-TOI-only mesh call (certified modes) filters each batch over
+// the part of the step the batches before it left open (scheduler/horizons.hpp).
+// Here a first batch of copies of one contact at t_w, a power of two at most
+// 1/32 above the records' earliest contact, narrows the window before the
+// records' batch: the call's earliest TOI must still be the minimum of the
+// same call's per-candidate results. Skipped where a search ran out of its
+// budget (an undecided hit's TOI may depend on tmax).
+void check_earliest_in_window(Kind kind, const RecordMesh& mesh, std::span<const double> separations,
+                              const BatchResult& per_candidate, Options options, const lab::Method& method) {
+  if (!options.need_toi || per_candidate.counters.undecided > 0) return;
+  double t_w = 0x1p-5;
+  while (t_w / 2 > per_candidate.earliest_toi && t_w > 0x1p-40) t_w /= 2;
+  constexpr int kBatch = 2048;  // simd::kFilterBatch
+  const auto n = static_cast<int>(mesh.t0.rows());
+  Eigen::MatrixXd t0(n + 4, 3), t1(n + 4, 3);
+  t0.topRows(n) = mesh.t0;
+  t1.topRows(n) = mesh.t1;
+  // Vertex-face: vertex n + 3 falls onto face (n, n + 1, n + 2) at t_w.
+  // Edge-edge: edge (n + 2, n + 3) falls onto edge (n, n + 1) at t_w.
+  const bool faces = kind == Kind::vertex_face;
+  t0.bottomRows(4) << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0.25, 0.25, 1;
+  if (!faces) t0.bottomRows(4) << -1, 0, 0, 1, 0, 0, 0, -1, 1, 0, 1, 1;
+  t1.bottomRows(4) = t0.bottomRows(4);
+  for (int k = faces ? 3 : 2; k < 4; ++k) t1(n + k, 2) = 1 - 1 / t_w;
+  Eigen::MatrixXi face_rows(mesh.faces.rows() + (faces ? 1 : 0), 3);
+  face_rows.topRows(mesh.faces.rows()) = mesh.faces;
+  batchccd::Candidates candidates;
+  if (faces) {
+    face_rows.bottomRows(1) << n, n + 1, n + 2;
+    candidates.vertex_face.assign(kBatch, {n + 3, static_cast<int>(mesh.faces.rows())});
+    candidates.vertex_face.insert(candidates.vertex_face.end(), mesh.candidates.vertex_face.begin(),
+                                  mesh.candidates.vertex_face.end());
+  } else {
+    candidates.edge_edge.assign(kBatch, {n, n + 1, n + 2, n + 3});
+    candidates.edge_edge.insert(candidates.edge_edge.end(), mesh.candidates.edge_edge.begin(),
+                                mesh.candidates.edge_edge.end());
+  }
+  std::vector<double> each;
+  batchccd::MinDistances per_list;
+  if (!separations.empty() && separations.front() > 0) {
+    each.assign(kBatch, 0.0);
+    each.insert(each.end(), separations.begin(), separations.end());
+    (faces ? per_list.vertex_face : per_list.edge_edge) = each;
+  }
+  const batchccd::MeshView view{t0, t1, face_rows};
+  BatchResult all, earliest;
+  lab::mesh_ccd(view, candidates, per_list, options, method.settings(), all);
+  if (all.counters.undecided > 0) return;
+  double minimum = std::numeric_limits<double>::infinity();
+  for (const QueryResult& r : all.results)
+    if (r.hit) minimum = std::min(minimum, r.toi);
+  options.per_candidate_results = false;
+  options.hit_list = false;
+  lab::mesh_ccd(view, candidates, per_list, options, method.settings(), earliest);
+  require(std::memcmp(&earliest.earliest_toi, &minimum, sizeof(double)) == 0,
+          "an earliest-TOI-only mesh call's TOI is the minimum of its per-candidate results");
+  require(earliest.counters.candidates == all.counters.candidates, "earliest-TOI-only: candidates");
+}
+
 // All queries of one kind (and need_toi) in one call of the setup's entry
 // point, method and instruction set, each at its separation, against their
 // answers alone. Without a separation no list of them is passed: a list of
@@ -244,6 +307,7 @@ void check_batch(Kind kind, std::span<const Query> queries, std::span<const doub
     if (separations.front() > 0)
       (kind == Kind::vertex_face ? per_candidate.vertex_face : per_candidate.edge_edge) = separations;
     lab::mesh_ccd({mesh.t0, mesh.t1, mesh.faces}, mesh.candidates, per_candidate, options, method.settings(), batch);
+    if (is_certified(method)) check_earliest_in_window(kind, mesh, separations, batch, options, method);
   } else {
     lab::batch_ccd(kind, queries, separations.front() > 0 ? separations : std::span<const double>(), options,
                    method.settings(), batch);
