@@ -2,6 +2,7 @@
 
 #include <array>
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <mutex>
 
@@ -54,7 +55,11 @@ class Horizons {
     if (!ready_[slot].load(std::memory_order_acquire)) {
       const std::lock_guard<std::mutex> lock(making_);
       if (!ready_[slot].load(std::memory_order_relaxed)) {
-        rows_[slot].resize(whole.vertices);
+        // Room for every horizon not yet made, not just this one: which
+        // horizons a call reaches depends on the order threads find
+        // contacts, and a frame loop's later calls must not allocate.
+        for (std::size_t k = 0; k < rows_.size(); ++k)
+          if (!ready_[k].load(std::memory_order_relaxed)) rows_[k].resize(whole.vertices);
         rows_[slot].pack_within(*whole_, horizon, 0, whole.vertices);
         ready_[slot].store(true, std::memory_order_release);
       }
