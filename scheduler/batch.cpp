@@ -143,6 +143,15 @@ struct Separations {
   double at(std::size_t i) const { return each ? each[i] : all; }
 };
 
+// A batch's culls, `culled` in all and by filter, into `counters`.
+void count_culls(std::size_t culled, const simd::FilterCounts& culls, Counters& counters) {
+  counters.culled += static_cast<std::int64_t>(culled);
+  counters.culled_by_sign += static_cast<std::int64_t>(culls.sign);
+  counters.culled_by_separation += static_cast<std::int64_t>(culls.separation);
+  counters.culled_by_pieces += static_cast<std::int64_t>(culls.pieces);
+  counters.culled_by_swept_box += static_cast<std::int64_t>(culls.swept_box);
+}
+
 // The lane filters over candidates [0, count) of a source of `kind`'s
 // candidates (a point kind's as edge-edge queries), in batches of
 // kFilterBatch: the survivors' indices, in increasing order, into
@@ -167,12 +176,7 @@ void filter_source(Kind kind, const Source& source, std::size_t count, simd::Fil
           simd::FilterCounts culls;
           const std::size_t kept = lanes(source, begin, end, settings, storage.kept_in_batch.data() + begin, culls);
           storage.kept_counts[batch] = kept;
-          Counters& counters = partials.local().counters;
-          counters.culled += static_cast<std::int64_t>(end - begin - kept);
-          counters.culled_by_sign += static_cast<std::int64_t>(culls.sign);
-          counters.culled_by_separation += static_cast<std::int64_t>(culls.separation);
-          counters.culled_by_pieces += static_cast<std::int64_t>(culls.pieces);
-          counters.culled_by_swept_box += static_cast<std::int64_t>(culls.swept_box);
+          count_culls(end - begin - kept, culls, partials.local().counters);
         }
       },
       tbb::simple_partitioner());
@@ -606,11 +610,7 @@ void filter_in_window(Kind kind, const Source& whole, std::size_t count, simd::F
           simd::FilterCounts culls;
           std::uint32_t* kept = storage.kept_in_batch.data() + begin;
           const std::size_t survivors = lanes(within, begin, end, own, kept, culls);
-          counters.culled += static_cast<std::int64_t>(end - begin - survivors);
-          counters.culled_by_sign += static_cast<std::int64_t>(culls.sign);
-          counters.culled_by_separation += static_cast<std::int64_t>(culls.separation);
-          counters.culled_by_pieces += static_cast<std::int64_t>(culls.pieces);
-          counters.culled_by_swept_box += static_cast<std::int64_t>(culls.swept_box);
+          count_culls(end - begin - survivors, culls, counters);
           for (std::size_t j = 0; j < survivors; ++j) {
             const std::size_t i = begin + kept[j];
             if (!(window.earliest() > 0)) {
