@@ -230,9 +230,9 @@ RecordMesh as_mesh(Kind kind, std::span<const Query> queries) {
 
 // The earliest-TOI-only mesh call (certified modes) filters each batch over
 // the part of the step the batches before it left open (scheduler/horizons.hpp).
-// Here a first batch of copies of one contact at t_w, a power of two at most
-// 1/32 above the records' earliest contact, narrows the window before the
-// records' batch: the call's earliest TOI must still be the minimum of the
+// Here a first batch (one contact at t_w, a power of two at most 1/32 above
+// the records' earliest contact, then static pairs far apart, which the
+// lanes cull at once) narrows the window before the records' batch: the call's earliest TOI must still be the minimum of the
 // same call's per-candidate results. Skipped where a search ran out of its
 // budget (an undecided hit's TOI may depend on tmax).
 void check_earliest_in_window(Kind kind, const RecordMesh& mesh, std::span<const double> separations,
@@ -242,26 +242,30 @@ void check_earliest_in_window(Kind kind, const RecordMesh& mesh, std::span<const
   while (t_w / 2 > per_candidate.earliest_toi && t_w > 0x1p-40) t_w /= 2;
   constexpr int kBatch = 2048;  // simd::kFilterBatch
   const auto n = static_cast<int>(mesh.t0.rows());
-  Eigen::MatrixXd t0(n + 4, 3), t1(n + 4, 3);
+  Eigen::MatrixXd t0(n + 6, 3), t1(n + 6, 3);
   t0.topRows(n) = mesh.t0;
   t1.topRows(n) = mesh.t1;
-  // Vertex-face: vertex n + 3 falls onto face (n, n + 1, n + 2) at t_w.
-  // Edge-edge: edge (n + 2, n + 3) falls onto edge (n, n + 1) at t_w.
+  // Vertex-face: vertex n + 3 falls onto face (n, n + 1, n + 2) at t_w;
+  // vertex n + 4 stays 10 above it. Edge-edge: edge (n + 2, n + 3) falls
+  // onto edge (n, n + 1) at t_w; edge (n + 4, n + 5) stays 10 above it.
   const bool faces = kind == Kind::vertex_face;
-  t0.bottomRows(4) << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0.25, 0.25, 1;
-  if (!faces) t0.bottomRows(4) << -1, 0, 0, 1, 0, 0, 0, -1, 1, 0, 1, 1;
-  t1.bottomRows(4) = t0.bottomRows(4);
+  t0.bottomRows(6) << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0.25, 0.25, 1, 0.25, 0.25, 10, 0, 1, 10;
+  if (!faces) t0.bottomRows(6) << -1, 0, 0, 1, 0, 0, 0, -1, 1, 0, 1, 1, 0, -1, 10, 0, 1, 10;
+  t1.bottomRows(6) = t0.bottomRows(6);
   for (int k = faces ? 3 : 2; k < 4; ++k) t1(n + k, 2) = 1 - 1 / t_w;
   Eigen::MatrixXi face_rows(mesh.faces.rows() + (faces ? 1 : 0), 3);
   face_rows.topRows(mesh.faces.rows()) = mesh.faces;
   batchccd::Candidates candidates;
   if (faces) {
+    const int face = static_cast<int>(mesh.faces.rows());
     face_rows.bottomRows(1) << n, n + 1, n + 2;
-    candidates.vertex_face.assign(kBatch, {n + 3, static_cast<int>(mesh.faces.rows())});
+    candidates.vertex_face.assign(kBatch, {n + 4, face});
+    candidates.vertex_face.front() = {n + 3, face};
     candidates.vertex_face.insert(candidates.vertex_face.end(), mesh.candidates.vertex_face.begin(),
                                   mesh.candidates.vertex_face.end());
   } else {
-    candidates.edge_edge.assign(kBatch, {n, n + 1, n + 2, n + 3});
+    candidates.edge_edge.assign(kBatch, {n, n + 1, n + 4, n + 5});
+    candidates.edge_edge.front() = {n, n + 1, n + 2, n + 3};
     candidates.edge_edge.insert(candidates.edge_edge.end(), mesh.candidates.edge_edge.begin(),
                                 mesh.candidates.edge_edge.end());
   }

@@ -512,11 +512,7 @@ std::array<Separations, 4> list_separations(const CandidateLists& candidates, co
 // their separations, and their survivors (all of them for the unfiltered
 // baseline: `filtered` false).
 struct FilteredMesh {
-  const simd::MeshVertexFace& vertex_face;
-  const simd::MeshEdgeEdge& edge_edge;
-  const simd::MeshEdgeEdge& vertex_edge;
-  const simd::MeshEdgeEdge& vertex_vertex;
-  std::array<std::size_t, 4> counts;
+  const MeshSources& sources;
   std::array<Separations, 4> separations;
   std::array<std::vector<std::size_t>, 4>& survivors;
   bool filtered;
@@ -548,8 +544,7 @@ void filter_mesh(const MeshView& mesh, const CandidateLists& candidates, const M
         filter_source(Kind::vertex_vertex, sources.vertex_vertex, counts[3], kernels.edge_edge, options, lab,
                       separations[3], storage, partials, survivors[3]);
       });
-    FilteredMesh lists{sources.vertex_face, sources.edge_edge, sources.vertex_edge, sources.vertex_vertex,
-                       counts, separations, survivors, filtered};
+    FilteredMesh lists{sources, separations, survivors, filtered};
     then(lists, partials);
   });
 }
@@ -677,15 +672,16 @@ void lab::mesh_ccd(const MeshView& mesh, const CandidateLists& candidates, const
     return;
   }
   filter_mesh(mesh, candidates, min_distances, options, lab, [&](FilteredMesh& lists, Partials& partials) {
-    const auto& [vertex_face, edge_edge, vertex_edge, vertex_vertex] = lists.counts;
+    const MeshSources& sources = lists.sources;
+    const auto& [vertex_face, edge_edge, vertex_edge, vertex_vertex] = sources.counts;
     reset(out, vertex_face + edge_edge + vertex_edge + vertex_vertex, options);
     const auto solved = [&](int list) { return lists.filtered ? &lists.survivors[list] : nullptr; };
-    solve_source(lists.vertex_face, vertex_face, solved(0), options, lab, lists.separations[0], 0, out, partials);
-    solve_source(lists.edge_edge, edge_edge, solved(1), options, lab, lists.separations[1], vertex_face, out,
+    solve_source(sources.vertex_face, vertex_face, solved(0), options, lab, lists.separations[0], 0, out, partials);
+    solve_source(sources.edge_edge, edge_edge, solved(1), options, lab, lists.separations[1], vertex_face, out,
                  partials);
-    solve_source(lists.vertex_edge, vertex_edge, solved(2), options, lab, lists.separations[2],
+    solve_source(sources.vertex_edge, vertex_edge, solved(2), options, lab, lists.separations[2],
                  vertex_face + edge_edge, out, partials);
-    solve_source(lists.vertex_vertex, vertex_vertex, solved(3), options, lab, lists.separations[3],
+    solve_source(sources.vertex_vertex, vertex_vertex, solved(3), options, lab, lists.separations[3],
                  vertex_face + edge_edge + vertex_edge, out, partials);
     combine(partials, out);
   });
