@@ -41,11 +41,13 @@ constexpr double kReachFractions[] = {1 - 0x1p-10, 0.9375};
 // always suffice, and the turning step costs about five of theirs.
 constexpr int kTurningFromStep = 12;
 
-// The part `fraction` of the way from t to `reach` (not past 1), rounded
-// down to the 2^-45 grid the steps' interval ends lie on.
+// x rounded down to the 2^-45 grid (kSmallestWidth) the steps' interval
+// ends lie on: exact, as the grid is a power of two.
+double down_to_grid(double x) { return std::floor(x / kSmallestWidth) * kSmallestWidth; }
+
+// The part `fraction` of the way from t to `reach` (not past 1), on the grid.
 double step_length(double t, double reach, double fraction) {
-  constexpr double grid = 0x1p45;
-  return std::floor((std::min(1.0, t + (reach - t) * fraction) - t) * grid) / grid;
+  return down_to_grid(std::min(1.0, t + (reach - t) * fraction) - t);
 }
 
 struct Interval {
@@ -369,8 +371,7 @@ class InclusionSolver {
   // each other the motion along n is a small part of m, and this step is
   // that much longer than conservative advancement's.
   double cleared_along_closest(double t, double until, const ClosestAt& closest) const {
-    constexpr double grid = 0x1p45;
-    if (std::floor(t * grid) / grid != t) return t;  // off the grid: interpolation not bounded
+    if (down_to_grid(t) != t) return t;  // off the grid: interpolation not bounded
     const std::optional<V3> n = closest_direction(closest);
     if (!n) return t;
     const std::optional<Separating> direction = separating(*n);
@@ -400,7 +401,7 @@ class InclusionSolver {
     // tmax beyond it, as conservative advancement's are (docs/design.md §12).
     double tried = t;
     for (const double fraction : kReachFractions) {
-      const double end = std::min(1.0, t + std::floor((reach - t) * fraction * grid) / grid);
+      const double end = std::min(1.0, t + down_to_grid((reach - t) * fraction));
       if (!(end > t)) return t;
       if (end == tried) continue;
       if (separated_at(*direction, positions_at(end))) return std::min(end, until);
@@ -423,8 +424,7 @@ class InclusionSolver {
   // or t is returned. Certified up to its end whatever `until`, as
   // cleared_along_closest is.
   double cleared_by_plane(double t, double until) const {
-    constexpr double grid = 0x1p45;
-    if (std::floor(t * grid) / grid != t) return t;  // off the grid: interpolation not bounded
+    if (down_to_grid(t) != t) return t;  // off the grid: interpolation not bounded
     // a, b, c at time 0 and their rates: VF x21, x31, x41; EE x21, x43, x31.
     const bool vertex_face = kind_ == Kind::vertex_face;
     const V3 a0 = position_[0][0], b0 = vertex_face ? position_[1][0] : position_[2][0] - position_[1][0];
@@ -463,7 +463,7 @@ class InclusionSolver {
     double length = length_of(kReachFractions[1]);
     if (nearly_all > length && plane_apart(endpoints(Interval{t, t + nearly_all})))
       return std::min(t + nearly_all, until);
-    for (int attempt = 0; attempt < 4 && length > 0; ++attempt, length = std::floor(length * 0.5 * grid) / grid)
+    for (int attempt = 0; attempt < 4 && length > 0; ++attempt, length = down_to_grid(length * 0.5))
       if (plane_apart(endpoints(Interval{t, t + length}))) return std::min(t + length, until);
     return t;
   }
@@ -483,8 +483,7 @@ class InclusionSolver {
   // turning_gap.hpp). Certified up to e whatever `until`, as the other
   // steps are.
   double cleared_turning(double t, double until, const ClosestAt& closest) const {
-    constexpr double grid = 0x1p45;
-    if (std::floor(t * grid) / grid != t) return t;  // off the grid: interpolation not bounded
+    if (down_to_grid(t) != t) return t;  // off the grid: interpolation not bounded
     const std::optional<V3> start_direction = closest_direction(closest);
     if (!start_direction) return t;
     const double separation = settings_.min_distance;
@@ -518,8 +517,8 @@ class InclusionSolver {
           end_direction && turning_apart(kind_, *start_direction, closest.position, *end_direction, far.position,
                                          reach_, absolute_error_, settings_.min_distance, settings_.certified))
         return std::min(end, until);
-      length = attempt == 0 ? std::min(length_of(kReachFractions[1]), std::floor(length * 0.5 * grid) / grid)
-                            : std::floor(length * 0.5 * grid) / grid;
+      length = attempt == 0 ? std::min(length_of(kReachFractions[1]), down_to_grid(length * 0.5))
+                            : down_to_grid(length * 0.5);
     }
     return t;
   }
@@ -527,9 +526,8 @@ class InclusionSolver {
   // Whether a witness stands at one of the times toi_tolerance, twice that,
   // four times that, ... after `start`, up to tmax.
   bool witness_after(double start) const {
-    constexpr double grid = 0x1p45;
-    const double end = std::floor(std::min(settings_.tmax, 1.0) * grid) / grid;
-    for (double step = std::max(std::floor(settings_.toi_tolerance * grid), 1.0) / grid;; step *= 2) {
+    const double end = down_to_grid(std::min(settings_.tmax, 1.0));
+    for (double step = std::max(down_to_grid(settings_.toi_tolerance), kSmallestWidth);; step *= 2) {
       const double t = std::min(start + step, end);  // on the grid: exact
       if (witnessed_at(t)) return true;
       if (t >= end) return false;
@@ -551,7 +549,7 @@ class InclusionSolver {
     constexpr int kSteps = 64;
     const SeparationErrorModel error = separation_error(absolute_error_, settings_.certified);
     if (!error.enabled) return false;
-    constexpr double shrink = SeparationErrors::shrink, grid = 0x1p45;
+    constexpr double shrink = SeparationErrors::shrink;
     double t = from, previous_step = 0;
     for (int step = 0; step < kSteps && t < until; ++step) {
       // Along the closest direction a step often clears all the way (and
@@ -583,11 +581,11 @@ class InclusionSolver {
         }
         // Whole grid steps: t is on the grid, so the sum is exact. Without
         // relative motion (the fast baseline's m may be 0) the whole way.
-        step_length = std::floor(gap / motion() * shrink * grid) / grid;
+        step_length = down_to_grid(gap / motion() * shrink);
       }
       const double next = std::min(t + step_length, until);
       if (step_length < settings_.toi_tolerance) {
-        const double ahead = std::min(t + std::floor(settings_.toi_tolerance * grid) / grid, until);
+        const double ahead = std::min(t + down_to_grid(settings_.toi_tolerance), until);
         if (ahead > t && witnessed_at(ahead)) {
           advanced_ = std::max(advanced_, next);
           return true;
@@ -611,9 +609,8 @@ class InclusionSolver {
   }
   // The same at the time of `at`, whose closest parameters are known.
   bool witnessed(const Endpoints& at, const std::array<double, 2>& closest) const {
-    constexpr double grid = 0x1p45;
     const auto [u, v] = closest;
-    const double u_grid = std::floor(u * grid) / grid, v_grid = std::floor(v * grid) / grid;
+    const double u_grid = down_to_grid(u), v_grid = down_to_grid(v);
     const Image image = evaluate(at, ParameterBox{{u_grid, u_grid}, {v_grid, v_grid}});
     return image.centre_distance <= witness_distance_;
   }
