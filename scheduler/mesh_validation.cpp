@@ -68,7 +68,7 @@ bool all_in_range(const MeshView& mesh, const CandidateLists& candidates, ListsT
     for (int k = 0; k < 3; ++k) found |= outside(mesh.faces(f, k), n);
   if (lists.vertex_face)
     found |= any_outside(candidates.vertex_face, [n, m](const std::array<int, 2>& pair) {
-      return outside(pair[0], n) | outside(pair[1], m);
+      return outside(pair[0], n) || outside(pair[1], m);
     });
   const auto any_vertex_outside = [n](const auto& ids) {
     bool any = false;

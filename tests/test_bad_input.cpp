@@ -286,7 +286,7 @@ TEST(BadInputOptions, AnUnavailableInstructionSetIsRefusedByName) {
     }
     ++refused;
     for (const auto& call : std::vector<std::function<void()>>{
-             [&] { batchccd::resolve_isa(isa); },
+             [&] { batchccd::resolve_isa(options.isa); },
              [&] { batchccd::batch_ccd(Kind::vertex_face, queries, options); },
              [&] { batchccd::mesh_ccd({positions, positions, faces}, batchccd::CandidateLists{}, options); }}) {
       try {

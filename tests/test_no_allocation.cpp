@@ -224,8 +224,10 @@ TEST(NoAllocation, TheCounterSeesAllocations) {
 TEST(NoAllocation, MeshCallsOfEveryKindAndOption) {
   ASSERT_GT(frame().lists.vertex_edge.size(), 0u);
   ASSERT_GT(frame().lists.vertex_vertex.size(), 0u);
-  for (const auto& [name, options] : option_sets())
+  for (const auto& set : option_sets())
     for (bool each : {false, true}) {
+      const auto& [name, own_options] = set;
+      const Options& options = own_options;  // a reference, not a binding: the lambda captures it
       const MinDistances separations = each ? frame().min_distances() : MinDistances{};
       expect_no_allocation_after_warm_up(
           [&](int threads, BatchResult& out) {
@@ -244,8 +246,9 @@ void expect_raw_calls_allocate_nothing(const QueriesOf& queries_of, const std::s
     const auto queries = queries_of(kind);
     const std::vector<double>& own = frame().separations[static_cast<int>(kind)];
     ASSERT_EQ(queries.size(), own.size());
-    for (const auto& [name, options] : option_sets())
+    for (const auto& [name, own_options] : option_sets())
       for (bool each : {false, true}) {
+        const Options& options = own_options;  // a reference, not a binding: the lambda captures it
         expect_no_allocation_after_warm_up(
             [&](int threads, BatchResult& out) {
               Options with = options;

@@ -95,7 +95,9 @@ TEST(ShrinkingWindow, AHitsToiDoesNotDependOnTmaxAboveIt) {
           const QueryResult result = query_ccd(q.kind, q.query, options);
           if (result.hit) hits.push_back({q, result.toi});
         }
-        for (const auto& [q, toi] : spread(hits, 150)) {
+        for (const auto& hit : spread(hits, 150)) {
+          const KindQuery& q = hit.first;  // named, not bound: lambdas below capture them
+          const double toi = hit.second;
           const auto again = [&](double window) {
             Options in_window = options;
             in_window.tmax = window;
