@@ -91,12 +91,13 @@ std::size_t in_batches(std::size_t count, const Filter& filter) {
 void filter_raw(benchmark::State& state, Isa isa, const std::vector<Query>& queries) {
   const simd::FilterKernels& kernels = simd::filter_kernels(isa);
   std::vector<std::uint32_t> survivors(queries.size());
+  std::vector<std::uint8_t> free_pieces(queries.size());
   const simd::RawQueries source = simd::raw_queries(Kind::vertex_face, queries.data(), queries.size());
   std::size_t kept = 0;
   for (auto _ : state) {
     simd::FilterCounts counts;
     kept = in_batches(queries.size(), [&](std::size_t begin, std::size_t end) {
-      return kernels.raw(source, begin, end, settings(state), survivors.data(), counts);
+      return kernels.raw(source, begin, end, settings(state), survivors.data(), free_pieces.data(), counts);
     });
     benchmark::DoNotOptimize(kept);
   }
@@ -127,15 +128,16 @@ void filter_mesh(benchmark::State& state, Isa isa, Kind kind) {
   const std::size_t count = kind == Kind::vertex_face ? data.candidates.vertex_face.size()
                                                       : data.candidates.edge_edge.size();
   std::vector<std::uint32_t> survivors(count);
+  std::vector<std::uint8_t> free_pieces(count);
   std::size_t kept = 0;
   simd::FilterCounts counts;
   for (auto _ : state) {
     kept = in_batches(count, [&](std::size_t begin, std::size_t end) {
       return kind == Kind::vertex_face
                  ? kernels.vertex_face({positions, faces.view(), data.candidates.vertex_face.data()}, begin,
-                                       end, settings(state), survivors.data(), counts)
+                                       end, settings(state), survivors.data(), free_pieces.data(), counts)
                  : kernels.edge_edge({positions, data.candidates.edge_edge.data()}, begin, end,
-                                     settings(state), survivors.data(), counts);
+                                     settings(state), survivors.data(), free_pieces.data(), counts);
     });
     benchmark::DoNotOptimize(kept);
   }

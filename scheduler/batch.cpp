@@ -96,15 +96,30 @@ class Partials {
   std::vector<Partial>& slots_;
 };
 
+// A candidate the lane filters kept, and the pieces of its step they
+// proved free of contact (reference::FilterVerdict::free_pieces).
+struct Survivor {
+  std::size_t candidate;
+  std::uint8_t free_pieces;
+  reference::FilterVerdict verdict() const { return {.free_pieces = free_pieces}; }
+};
+
 // What a call keeps for the next one on the same host thread, so that a
 // frame loop allocates nothing once these have grown: the lanes' survivors
 // batch by batch, each list's survivors, the workers' partial results, a
 // mesh's packed rows and faces, its point candidates as edge pairs, and a
 // 2D call's queries lifted.
 struct CallStorage {
+  // Room for the lanes' survivors of `count` candidates.
+  void reserve_kept(std::size_t count) {
+    if (kept_in_batch.size() < count) kept_in_batch.resize(count);
+    if (free_in_batch.size() < count) free_in_batch.resize(count);
+  }
+
   std::vector<std::uint32_t> kept_in_batch;  // the lanes' survivors, batch b's from b * kFilterBatch
+  std::vector<std::uint8_t> free_in_batch;   // beside each, the pieces of its step proven free
   std::vector<std::size_t> kept_counts;      // how many each batch kept
-  std::array<std::vector<std::size_t>, 4> survivors;
+  std::array<std::vector<Survivor>, 4> survivors;
   std::vector<Partial> partials;
   simd::PackedPositions packed;
   simd::PackedFaces faces;
@@ -159,14 +174,14 @@ void count_culls(std::size_t culled, const simd::FilterCounts& culls, Counters& 
 template <class Source>
 void filter_source(Kind kind, const Source& source, std::size_t count, simd::FilterFunction<Source> lanes,
                    const Options& options, const lab::Settings& lab, const Separations& separations,
-                   CallStorage& storage, Partials& partials, std::vector<std::size_t>& survivors) {
+                   CallStorage& storage, Partials& partials, std::vector<Survivor>& survivors) {
   reference::FilterSettings settings = reference::settings_for(kind, reference::filter_settings(options, lab));
   settings.within = separations.any();
   settings.min_distance = separations.all;
   settings.min_distances = separations.each;
   const std::size_t batches = (count + simd::kFilterBatch - 1) / simd::kFilterBatch;
   // A batch's lanes write within its own candidates' places (FilterFunction).
-  if (storage.kept_in_batch.size() < count) storage.kept_in_batch.resize(count);
+  storage.reserve_kept(count);
   if (storage.kept_counts.size() < batches) storage.kept_counts.resize(batches);
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, batches, 1),
@@ -174,7 +189,8 @@ void filter_source(Kind kind, const Source& source, std::size_t count, simd::Fil
         for (std::size_t batch = range.begin(); batch < range.end(); ++batch) {
           const std::size_t begin = batch * simd::kFilterBatch, end = std::min(count, begin + simd::kFilterBatch);
           simd::FilterCounts culls;
-          const std::size_t kept = lanes(source, begin, end, settings, storage.kept_in_batch.data() + begin, culls);
+          const std::size_t kept = lanes(source, begin, end, settings, storage.kept_in_batch.data() + begin,
+                                         storage.free_in_batch.data() + begin, culls);
           storage.kept_counts[batch] = kept;
           count_culls(end - begin - kept, culls, partials.local().counters);
         }
@@ -187,7 +203,7 @@ void filter_source(Kind kind, const Source& source, std::size_t count, simd::Fil
   for (std::size_t batch = 0; batch < batches; ++batch) {
     const std::size_t begin = batch * simd::kFilterBatch;
     for (std::size_t j = 0; j < storage.kept_counts[batch]; ++j)
-      survivors[next++] = begin + storage.kept_in_batch[begin + j];
+      survivors[next++] = {begin + storage.kept_in_batch[begin + j], storage.free_in_batch[begin + j]};
   }
 }
 
@@ -200,7 +216,7 @@ bool earliest_toi_only(const Options& options) {
 // Survivors in small pieces, in parallel: their costs vary by orders of
 // magnitude and cluster where the meshes touch, so small pieces balance.
 template <class Evaluate>
-void for_each_survivor(const std::vector<std::size_t>& survivors, Evaluate evaluate) {
+void for_each_survivor(const std::vector<Survivor>& survivors, Evaluate evaluate) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, survivors.size(), kSolverGrain),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t k = range.begin(); k < range.end(); ++k) evaluate(survivors[k]);
@@ -215,11 +231,12 @@ void for_each_survivor(const std::vector<std::size_t>& survivors, Evaluate evalu
 // survivor is asked over the window (window_tmax), and none once a contact
 // at 0 is known.
 template <class Source>
-void solve_source(const Source& source, std::size_t count, const std::vector<std::size_t>* survivors,
+void solve_source(const Source& source, std::size_t count, const std::vector<Survivor>* survivors,
                   const Options& options, const lab::Settings& lab, const Separations& separations,
                   std::size_t offset, BatchResult& batch, Partials& partials, ShrinkingWindow* window = nullptr) {
   const bool filtered = survivors != nullptr;
-  const auto evaluate = [&](std::size_t i, Partial& partial) {
+  // Candidate i, `kept` what the filters said of it (null: unfiltered).
+  const auto evaluate = [&](std::size_t i, const reference::FilterVerdict* kept, Partial& partial) {
     Options own = options;  // a candidate's own separation
     own.min_distance = separations.at(i);
     const Query query = simd::query_at(source, i);
@@ -230,7 +247,7 @@ void solve_source(const Source& source, std::size_t count, const std::vector<std
       }
       own.tmax = window_tmax(window->earliest(), options);
     }
-    const reference::Evaluation e = reference::evaluate_query(source.kind, query, own, lab, filtered);
+    const reference::Evaluation e = reference::evaluate_query(source.kind, query, own, lab, kept);
     if (window != nullptr && e.result.hit) window->lower_to(e.result.toi);
     tally(e, partial);
     if (options.per_candidate_results) batch.results[offset + i] = e.result;
@@ -241,7 +258,7 @@ void solve_source(const Source& source, std::size_t count, const std::vector<std
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, simd::kFilterBatch),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         Partial& partial = partials.local();
-                        for (std::size_t i = range.begin(); i < range.end(); ++i) evaluate(i, partial);
+                        for (std::size_t i = range.begin(); i < range.end(); ++i) evaluate(i, nullptr, partial);
                       },
                       tbb::simple_partitioner());
     return;
@@ -255,7 +272,10 @@ void solve_source(const Source& source, std::size_t count, const std::vector<std
                         std::fill(first + static_cast<std::ptrdiff_t>(range.begin()),
                                   first + static_cast<std::ptrdiff_t>(range.end()), QueryResult{});
                       });
-  for_each_survivor(*survivors, [&](std::size_t i) { evaluate(i, partials.local()); });
+  for_each_survivor(*survivors, [&](const Survivor& survivor) {
+    const reference::FilterVerdict kept = survivor.verdict();
+    evaluate(survivor.candidate, &kept, partials.local());
+  });
 }
 
 void combine(Partials& partials, BatchResult& batch) {
@@ -349,7 +369,7 @@ void batch_in(Kind kind, std::span<const Query> queries, const Separations& sepa
       simd::raw_queries(reference::evaluated_kind(kind), queries.data(), queries.size());
   in_arena(options.threads, [&] {
     Partials partials(storage.partials);
-    std::vector<std::size_t>& survivors = storage.survivors[0];
+    std::vector<Survivor>& survivors = storage.survivors[0];
     if (filtered)
       filter_source(kind, source, queries.size(), kernels.raw, options, lab, separations, storage, partials,
                     survivors);
@@ -514,7 +534,7 @@ std::array<Separations, 4> list_separations(const CandidateLists& candidates, co
 struct FilteredMesh {
   const MeshSources& sources;
   std::array<Separations, 4> separations;
-  std::array<std::vector<std::size_t>, 4>& survivors;
+  std::array<std::vector<Survivor>, 4>& survivors;
   bool filtered;
 };
 
@@ -532,7 +552,7 @@ void filter_mesh(const MeshView& mesh, const CandidateLists& candidates, const M
   with_mesh_sources(mesh, candidates, options, filtered, [&](const MeshSources& sources, CallStorage& storage) {
     const auto& counts = sources.counts;
     Partials partials(storage.partials);
-    std::array<std::vector<std::size_t>, 4>& survivors = storage.survivors;
+    std::array<std::vector<Survivor>, 4>& survivors = storage.survivors;
     if (filtered)
       naming_bad_ids(mesh, candidates, [&] {
         filter_source(Kind::vertex_face, sources.vertex_face, counts[0], kernels.vertex_face, options, lab,
@@ -552,7 +572,7 @@ void filter_mesh(const MeshView& mesh, const CandidateLists& candidates, const M
 // One list of an earliest-TOI-only call, filtered and asked batch by batch
 // (docs/design.md §12): each batch through the lane filters (`settings`,
 // at `separations`) over the part of the step the window still asks about,
-// then at once `decide(i, tmax, partial)` for each survivor i, tmax the
+// then at once `decide(survivor, tmax, partial)` for each survivor, tmax the
 // window's (`tmax_of(earliest)`). `narrow`: the filters may take the
 // horizons' rows (certified filters only: they add a margin for the rows'
 // rounding). Once the window is closed (a contact at 0) the batches left
@@ -568,7 +588,7 @@ void filter_in_window(Kind kind, const Source& whole, std::size_t count, simd::F
   settings.min_distance = separations.all;
   settings.min_distances = separations.each;
   const std::size_t batches = (count + simd::kFilterBatch - 1) / simd::kFilterBatch;
-  if (storage.kept_in_batch.size() < count) storage.kept_in_batch.resize(count);
+  storage.reserve_kept(count);
   if (separations.each != nullptr && storage.grown_separations.size() < count)
     storage.grown_separations.resize(count);
   partials.local().counters.candidates += static_cast<std::int64_t>(count);
@@ -604,15 +624,19 @@ void filter_in_window(Kind kind, const Source& whole, std::size_t count, simd::F
           }
           simd::FilterCounts culls;
           std::uint32_t* kept = storage.kept_in_batch.data() + begin;
-          const std::size_t survivors = lanes(within, begin, end, own, kept, culls);
+          std::uint8_t* free_pieces = storage.free_in_batch.data() + begin;
+          const std::size_t survivors = lanes(within, begin, end, own, kept, free_pieces, culls);
           count_culls(end - begin - survivors, culls, counters);
+          // Pieces of a horizon's rows are pieces of its part of the step, not of the whole.
+          const bool whole_step = within.positions.rows == whole.positions.rows;
           for (std::size_t j = 0; j < survivors; ++j) {
             const std::size_t i = begin + kept[j];
             if (!(window.earliest() > 0)) {
               counters.invalid += !reference::all_finite(simd::query_at(whole, i));
               continue;
             }
-            decide(i, tmax_of(window.earliest()), partials.local());
+            decide(Survivor{i, whole_step ? free_pieces[j] : std::uint8_t{0}}, tmax_of(window.earliest()),
+                   partials.local());
           }
         }
       },
@@ -642,12 +666,13 @@ void mesh_earliest_toi(const MeshView& mesh, const CandidateLists& candidates, c
       const Separations& separation = separations[static_cast<std::size_t>(list)];
       filter_in_window(kind, source, counts[static_cast<std::size_t>(list)], lanes,
                        reference::filter_settings(options, lab), separation, certified, storage, partials, window,
-                       tmax_of, [&](std::size_t i, double tmax, Partial& partial) {
+                       tmax_of, [&](const Survivor& survivor, double tmax, Partial& partial) {
                          Options own = options;
-                         own.min_distance = separation.at(i);
+                         own.min_distance = separation.at(survivor.candidate);
                          own.tmax = tmax;
-                         const reference::Evaluation e =
-                             reference::evaluate_query(source.kind, simd::query_at(source, i), own, lab, true);
+                         const reference::FilterVerdict kept = survivor.verdict();
+                         const reference::Evaluation e = reference::evaluate_query(
+                             source.kind, simd::query_at(source, survivor.candidate), own, lab, &kept);
                          if (e.result.hit) window.lower_to(e.result.toi);
                          tally(e, partial);
                        });
@@ -729,9 +754,10 @@ double ipc::collision_free_stepsize(const MeshView& mesh, const CandidateLists& 
     Partials partials(storage.partials);
     const auto pass = [&](Kind kind, const auto& source, std::size_t count, auto lanes) {
       filter_in_window(kind, source, count, lanes, settings, separation, true, storage, partials, window, tmax_of,
-                       [&](std::size_t i, double tmax, Partial&) {
-                         if (double toi = 1; rules::decide(kind, simd::query_at(source, i), toi, min_distance, tmax,
-                                                           tolerance, max_iterations, conservative_rescaling))
+                       [&](const Survivor& survivor, double tmax, Partial&) {
+                         if (double toi = 1; rules::decide(kind, simd::query_at(source, survivor.candidate), toi,
+                                                           min_distance, tmax, tolerance, max_iterations,
+                                                           conservative_rescaling))
                            window.lower_to(toi);
                        });
     };

@@ -16,8 +16,8 @@ namespace {
 // The scalar reference filter behind the same interface: Isa::scalar.
 template <class Source>
 std::size_t filter_range_scalar(const Source& source, std::size_t begin, std::size_t end,
-                                const reference::FilterSettings& settings,
-                                std::uint32_t* survivors, FilterCounts& counts) {
+                                const reference::FilterSettings& settings, std::uint32_t* survivors,
+                                std::uint8_t* free_pieces, FilterCounts& counts) {
   std::size_t kept = 0;
   reference::FilterSettings own = settings;  // a candidate's own separation
   for (std::size_t i = begin; i < end; ++i) {
@@ -27,7 +27,9 @@ std::size_t filter_range_scalar(const Source& source, std::size_t begin, std::si
     counts.separation += verdict.separation;
     counts.pieces += verdict.pieces;
     counts.swept_box += verdict.swept_box;
-    if (!verdict.culled()) survivors[kept++] = static_cast<std::uint32_t>(i - begin);
+    if (verdict.culled()) continue;
+    survivors[kept] = static_cast<std::uint32_t>(i - begin);
+    free_pieces[kept++] = verdict.free_pieces;
   }
   return kept;
 }

@@ -28,12 +28,14 @@ struct FilterCounts {
 inline constexpr std::size_t kFilterBatch = 2048;
 
 // Writes, in increasing order, the indices i - begin of the candidates in
-// [begin, end) that the filters cannot cull; returns how many, and adds
-// each filter's culls to `counts`.
+// [begin, end) that the filters cannot cull, and beside each in
+// `free_pieces` the pieces of its step they proved free of contact
+// (reference::FilterVerdict::free_pieces); returns how many, and adds each
+// filter's culls to `counts`.
 template <class Source>
 using FilterFunction = std::size_t (*)(const Source& source, std::size_t begin, std::size_t end,
-                                       const reference::FilterSettings& settings,
-                                       std::uint32_t* survivors, FilterCounts& counts);
+                                       const reference::FilterSettings& settings, std::uint32_t* survivors,
+                                       std::uint8_t* free_pieces, FilterCounts& counts);
 
 struct FilterKernels {
   Isa isa;

@@ -828,33 +828,92 @@ template <class Arch, class Source>
   return culled;
 }
 
-// The third pass, over the second one's survivors, in the separation
-// filter's direct frame only: bit k set when the pieces cull lane k. A pass
-// of its own, in full lanes: run on the second pass's groups, nearly half of
-// them had a lane left to test (of eight), and paid for all eight. The
-// whole-step bounds are computed again, as the filters compute them.
+// What the third pass says: bit k of `culled` set when the pieces cull lane
+// k, and free[k] lane k's pieces free of contact (bit j for piece j; 0 for
+// a lane the pieces do not take).
+struct PiecesCulls {
+  std::uint32_t culled = 0;
+  std::uint8_t free[8] = {};
+};
+
+// The pieces over one frame's differences, for the lanes `open` (bits):
+// `error` the separation filter's error model there, `sign_floor` the sign
+// test's floor, `separation` in the frame's units.
 template <class Arch, class Source>
-[[gnu::flatten]] std::uint32_t pieces_culled_lanes(const Source& source, const ListedGroup<Arch>& group,
-                                                   std::size_t count, const reference::FilterSettings& settings) {
+[[gnu::always_inline]] inline PiecesCulls pieces_of(
+    const Source& source, std::uint32_t open, const typename Lanes<Arch>::Vector (&relative)[3][2],
+    const typename Lanes<Arch>::Double (&largest)[3][2], const reference::SeparationErrorModel& error,
+    typename Lanes<Arch>::Double sign_floor, typename Lanes<Arch>::Double separation,
+    const reference::FilterSettings& settings) {
   using Double = typename Lanes<Arch>::Double;
-  const DirectDifferences<Arch> differences(source, group);
-  const std::uint32_t open = ((1u << count) - 1) &
-                             lane_bits<Arch>(differences.within_without_nan(reference::kSeparationDirectLowest,
-                                                                            reference::kSeparationDirectHighest));
-  if (open == 0) return 0;
-  const Double separation = settings.within ? lane_separations<Arch>(settings, group) : Double(0.0);
-  const reference::SeparationErrorModel error = reference::separation_error(0.0, settings.certified);
   const Kind kind = reference::separation_kind(source.kind, settings);
   const reference::SeparationMeasures<Double> measured =
-      reference::separation_measures(kind, differences.relative, Double(error.relative), Double(error.floor));
+      reference::separation_measures(kind, relative, Double(error.relative), Double(error.floor));
   reference::SignTest<Double> test{};
-  if (settings.sign)
-    test = reference::sign_test(differences.relative, differences.largest,
-                                Double(reference::direct_coefficient_error().floor), settings.certified);
-  return open & lane_bits<Arch>(reference::piecewise_culls(settings.pieces, kind, differences.relative,
-                                                           measured, Double(error.relative), Double(error.floor),
-                                                           settings.sign ? &test : nullptr, differences.largest,
-                                                           settings.certified, settings.within, separation));
+  if (settings.sign) test = reference::sign_test(relative, largest, sign_floor, settings.certified);
+  const auto verdicts = reference::piece_verdicts(settings.pieces, kind, relative, measured, Double(error.relative),
+                                                 Double(error.floor), settings.sign ? &test : nullptr, largest,
+                                                 settings.certified, settings.within, separation);
+  PiecesCulls culls;
+  culls.culled = open;
+  for (int j = 0; j < verdicts.count; ++j) {
+    const std::uint32_t free = open & lane_bits<Arch>(verdicts.free[j]);
+    culls.culled &= free;
+    for (std::uint32_t lanes = free; lanes != 0; lanes &= lanes - 1)
+      culls.free[__builtin_ctz(lanes)] |= static_cast<std::uint8_t>(1u << j);
+  }
+  return culls;
+}
+
+// The pieces for lanes outside the separation filter's direct window, in
+// the scaled frame, as that filter takes them (rare: only groups with such
+// a lane pay).
+template <class Arch, class Source>
+[[gnu::noinline, gnu::flatten]] PiecesCulls pieces_in_scaled_frame(const Source& source,
+                                                                    const ListedGroup<Arch>& group,
+                                                                    std::uint32_t lanes,
+                                                                    const reference::FilterSettings& settings) {
+  using Double = typename Lanes<Arch>::Double;
+  using Mask = typename Lanes<Arch>::Mask;
+  const ScaledFrame<Arch> frame(source, group);
+  // reference::separation_error, lane by lane.
+  const Mask enabled = settings.certified ? Mask(frame.absolute_error <= Double(0x1p-900)) : Mask(true);
+  const std::uint32_t open = lanes & lane_bits<Arch>(frame.evaluable & enabled);
+  if (open == 0) return {};
+  Double largest[3][2];
+  for (int i = 0; i < 3; ++i)
+    for (int tau = 0; tau < 2; ++tau) largest[i][tau] = Magnitudes<Arch>::largest(frame.relative[i][tau]);
+  const Double separation =
+      settings.within ? frame.scaled_length(lane_separations<Arch>(settings, group)) : Double(0.0);
+  return pieces_of<Arch>(source, open, frame.relative, largest, reference::separation_error(0.0, settings.certified),
+                         reference::coefficient_floor(frame.absolute_error), separation, settings);
+}
+
+// The third pass, over the second one's survivors, in the frames the
+// separation filter took (reference::run_filters). A pass of its own, in
+// full lanes: run on the second pass's groups, nearly half of them had a
+// lane left to test (of eight), and paid for all eight. The whole-step
+// bounds are computed again, as the filters compute them.
+template <class Arch, class Source>
+[[gnu::flatten]] PiecesCulls pieces_culled_lanes(const Source& source, const ListedGroup<Arch>& group,
+                                                 std::size_t count, const reference::FilterSettings& settings) {
+  using Double = typename Lanes<Arch>::Double;
+  const DirectDifferences<Arch> differences(source, group);
+  const std::uint32_t in_use = (1u << count) - 1;
+  const std::uint32_t direct = in_use & lane_bits<Arch>(differences.within_without_nan(
+                                            reference::kSeparationDirectLowest, reference::kSeparationDirectHighest));
+  PiecesCulls culls;
+  if (direct != 0)
+    culls = pieces_of<Arch>(source, direct, differences.relative, differences.largest,
+                            reference::separation_error(0.0, settings.certified),
+                            Double(reference::direct_coefficient_error().floor),
+                            settings.within ? lane_separations<Arch>(settings, group) : Double(0.0), settings);
+  if (const std::uint32_t scaled = in_use & ~direct; scaled != 0) {
+    const PiecesCulls other = pieces_in_scaled_frame<Arch>(source, group, scaled, settings);
+    culls.culled |= other.culled;
+    for (std::size_t lane = 0; lane < count; ++lane) culls.free[lane] |= other.free[lane];
+  }
+  return culls;
 }
 
 // Candidates [first, first + count) checked for ids the mesh does not have
@@ -1017,7 +1076,7 @@ std::size_t first_pass(const Source& source, std::size_t begin, std::size_t end,
 template <class Arch, bool within, class Source>
 std::size_t filter_range_of(const Source& source, std::size_t begin, std::size_t end,
                             const reference::FilterSettings& settings, std::uint32_t* survivors,
-                            FilterCounts& counts) {
+                            std::uint8_t* free_pieces, FilterCounts& counts) {
   constexpr std::size_t lanes = Lanes<Arch>::size;
   std::size_t kept = 0;
   if constexpr (kPacked<Source>) {
@@ -1026,8 +1085,10 @@ std::size_t filter_range_of(const Source& source, std::size_t begin, std::size_t
   } else {
     kept = first_pass<Arch, within, false>(source, begin, end, settings, survivors, counts);
   }
-  // Survivors regrouped into full lanes, pass after pass: `cull` returns
-  // the lanes it culls, counting them.
+  // Survivors regrouped into full lanes, pass after pass: `cull` culls
+  // lanes of a group (counting them) and writes the others from
+  // survivors + kept on, returning how many. In place: a group is read
+  // before anything is written over it.
   const auto pass = [&](const auto& cull) {
     const std::size_t given = kept;
     kept = 0;
@@ -1039,23 +1100,33 @@ std::size_t filter_range_of(const Source& source, std::size_t begin, std::size_t
         offsets[j] = survivors[first + std::min(j, count - 1)];
         group.candidate[j] = static_cast<std::int64_t>(begin + offsets[j]);
       }
-      const std::uint32_t keep = ~cull(group, count) & ((1u << count) - 1);
-      kept += compress<Arch>(keep, offsets, survivors + kept, count == lanes);
+      kept += cull(group, offsets, count);
     }
   };
   if ((settings.sign && settings.subdivide && !within) || settings.separation)
-    pass([&](const ListedGroup<Arch>& group, std::size_t count) {
+    pass([&](const ListedGroup<Arch>& group, const std::uint32_t* offsets, std::size_t count) {
       const LaterCulls culled = later_culled_lanes<Arch>(source, group, count, settings);
       counts.sign += static_cast<std::size_t>(__builtin_popcount(culled.sign));
       counts.separation += static_cast<std::size_t>(__builtin_popcount(culled.separation));
-      return culled.sign | culled.separation;
+      const std::uint32_t keep = ~(culled.sign | culled.separation) & ((1u << count) - 1);
+      return compress<Arch>(keep, offsets, survivors + kept, count == lanes);
     });
-  if (settings.separation && settings.pieces > 1)
-    pass([&](const ListedGroup<Arch>& group, std::size_t count) {
-      const std::uint32_t culled = pieces_culled_lanes<Arch>(source, group, count, settings);
-      counts.pieces += static_cast<std::size_t>(__builtin_popcount(culled));
-      return culled;
-    });
+  if (!(settings.separation && settings.pieces > 1)) {
+    std::fill(free_pieces, free_pieces + kept, std::uint8_t{0});
+    return kept;
+  }
+  // The pieces' survivors (few) keep their free pieces beside them.
+  pass([&](const ListedGroup<Arch>& group, const std::uint32_t* offsets, std::size_t count) {
+    const PiecesCulls culls = pieces_culled_lanes<Arch>(source, group, count, settings);
+    counts.pieces += static_cast<std::size_t>(__builtin_popcount(culls.culled));
+    std::size_t stored = 0;
+    for (std::uint32_t keep = ~culls.culled & ((1u << count) - 1); keep != 0; keep &= keep - 1, ++stored) {
+      const int lane = __builtin_ctz(keep);
+      survivors[kept + stored] = offsets[lane];
+      free_pieces[kept + stored] = culls.free[lane];
+    }
+    return stored;
+  });
   return kept;
 }
 
@@ -1064,21 +1135,22 @@ std::size_t filter_range_of(const Source& source, std::size_t begin, std::size_t
 template <class Arch, class Source>
 std::size_t filter_range(const Source& source, std::size_t begin, std::size_t end,
                          const reference::FilterSettings& settings, std::uint32_t* survivors,
-                         FilterCounts& counts) {
-  if (settings.within) return filter_range_of<Arch, true>(source, begin, end, settings, survivors, counts);
-  return filter_range_of<Arch, false>(source, begin, end, settings, survivors, counts);
+                         std::uint8_t* free_pieces, FilterCounts& counts) {
+  if (settings.within)
+    return filter_range_of<Arch, true>(source, begin, end, settings, survivors, free_pieces, counts);
+  return filter_range_of<Arch, false>(source, begin, end, settings, survivors, free_pieces, counts);
 }
 
 // Raw queries: the kind picked once a call, so that each kernel knows it.
 template <class Arch>
 std::size_t filter_range_raw(const RawQueries& raw, std::size_t begin, std::size_t end,
                              const reference::FilterSettings& settings, std::uint32_t* survivors,
-                             FilterCounts& counts) {
+                             std::uint8_t* free_pieces, FilterCounts& counts) {
   if (raw.kind == Kind::vertex_face)
     return filter_range<Arch>(RawQueriesOf<Kind::vertex_face>{raw.queries, raw.stream}, begin, end, settings,
-                              survivors, counts);
+                              survivors, free_pieces, counts);
   return filter_range<Arch>(RawQueriesOf<Kind::edge_edge>{raw.queries, raw.stream}, begin, end, settings,
-                            survivors, counts);
+                            survivors, free_pieces, counts);
 }
 
 template <class Arch>

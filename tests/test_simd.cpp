@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <ostream>
 #include <random>
 #include <tuple>
 #include <vector>
@@ -33,19 +35,32 @@ std::vector<const simd::FilterKernels*> vector_kernels() {
   return kernels;
 }
 
-// Survivors, then how many each filter culled, as one comparable list.
+// What a filter function says of a range: its survivors, the pieces of
+// their steps proven free, and how many each filter culled.
+struct Filtered {
+  std::vector<std::uint32_t> kept;
+  std::vector<std::uint8_t> free_pieces;
+  std::array<std::size_t, 4> culls;  // sign, separation, pieces, swept boxes
+  bool operator==(const Filtered&) const = default;
+};
+
+std::ostream& operator<<(std::ostream& out, const Filtered& filtered) {
+  out << filtered.kept.size() << " kept, culls " << filtered.culls[0] << " / " << filtered.culls[1] << " / "
+      << filtered.culls[2] << " / " << filtered.culls[3] << ", free pieces";
+  for (const std::uint8_t free : filtered.free_pieces) out << ' ' << int(free);
+  return out;
+}
+
 template <class Source>
-std::vector<std::uint32_t> survivors(simd::FilterFunction<Source> filter, const Source& source,
-                                     std::size_t begin, std::size_t end,
-                                     const reference::FilterSettings& settings) {
-  std::vector<std::uint32_t> kept(end - begin);
+Filtered survivors(simd::FilterFunction<Source> filter, const Source& source, std::size_t begin, std::size_t end,
+                   const reference::FilterSettings& settings) {
+  Filtered out{std::vector<std::uint32_t>(end - begin), std::vector<std::uint8_t>(end - begin), {}};
   simd::FilterCounts counts;
-  kept.resize(filter(source, begin, end, settings, kept.data(), counts));
-  kept.push_back(static_cast<std::uint32_t>(counts.sign));
-  kept.push_back(static_cast<std::uint32_t>(counts.separation));
-  kept.push_back(static_cast<std::uint32_t>(counts.pieces));
-  kept.push_back(static_cast<std::uint32_t>(counts.swept_box));
-  return kept;
+  const std::size_t kept = filter(source, begin, end, settings, out.kept.data(), out.free_pieces.data(), counts);
+  out.kept.resize(kept);
+  out.free_pieces.resize(kept);
+  out.culls = {counts.sign, counts.separation, counts.pieces, counts.swept_box};
+  return out;
 }
 
 // Per-candidate separations of every scale, 0 and subnormal included.
@@ -199,7 +214,7 @@ TEST(SimdKernels, MatchTheReferenceFilterOnAdversarialQueries) {
       const bool fewer = settings.within || !(whole_step || as_default);
       const std::size_t begin = 3, end = fewer ? begin + queries.size() / 8 + 1 : queries.size() - 5;
       const auto expected = survivors(simd::kScalarKernels.raw, source, begin, end, settings);
-      EXPECT_LT(expected.size(), end - begin);  // something is culled
+      EXPECT_LT(expected.kept.size(), end - begin);  // something is culled
       for (const simd::FilterKernels* k : kernels)
         EXPECT_EQ(survivors(k->raw, source, begin, end, settings), expected)
             << to_string(k->isa) << " " << to_string(kind) << " " << describe(settings);
@@ -422,8 +437,7 @@ TEST(SimdKernels, SecondPassEvaluatesTheSurvivorsItIsGiven) {
     if (!settings.sign && !settings.separation) continue;
     if (settings.within && (settings.min_distances != nullptr || settings.min_distance > 1)) continue;  // within reach
     for (const simd::FilterKernels* k : kernels) {
-      std::vector<std::uint32_t> kept = survivors(k->raw, source, 0, queries.size(), settings);
-      kept.resize(kept.size() - 4);  // the counts
+      const std::vector<std::uint32_t> kept = survivors(k->raw, source, 0, queries.size(), settings).kept;
       EXPECT_EQ(kept, collisions) << to_string(k->isa) << " " << describe(settings);
     }
   }
@@ -473,7 +487,7 @@ TEST(SimdKernels, BoxesAtASeparationKeepTheirMarginForRounding) {
                                              .within = true, .min_distance = separation};
     const auto expected = survivors(simd::kScalarKernels.edge_edge, source, 0, pairs.size(), settings);
     const bool kept = beyond < 0x1p-40;
-    EXPECT_EQ(expected.back(), kept ? 0u : pairs.size()) << "boxes' culls, " << beyond << " beyond";
+    EXPECT_EQ(expected.culls[3], kept ? 0u : pairs.size()) << "boxes' culls, " << beyond << " beyond";
     for (const simd::FilterKernels* k : kernels)
       EXPECT_EQ(survivors(k->edge_edge, source, 0, pairs.size(), settings), expected)
           << to_string(k->isa) << ", " << beyond << " beyond";
@@ -551,8 +565,8 @@ TEST(SimdKernels, CoarseBoxesCullOnlyWhatTheDoubleBoxesCull) {
           const auto vf_expected = survivors(simd::kScalarKernels.vertex_face, vf_source, 0, vf.size(), s);
           if (&s == &settings[0] && std::abs(scale) <= 97) {
             // The double boxes keep every candidate at the boundary, and cull the far ones.
-            EXPECT_EQ(ee_expected.size() - 4, 64u + 16u) << what;
-            EXPECT_EQ(vf_expected.size() - 4, 64u + 16u) << what;
+            EXPECT_EQ(ee_expected.kept.size(), 64u + 16u) << what;
+            EXPECT_EQ(vf_expected.kept.size(), 64u + 16u) << what;
           }
           for (const simd::FilterKernels* k : kernels) {
             EXPECT_EQ(survivors(k->edge_edge, ee_source, 0, ee.size(), s), ee_expected)

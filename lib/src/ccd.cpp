@@ -14,7 +14,7 @@ namespace batchccd {
 
 QueryResult lab::query_ccd(Kind kind, const Query& query, const Options& options, const Settings& settings) {
   validate(options, settings);
-  return reference::evaluate_query(reference::evaluated_kind(kind), query, options, settings).result;
+  return reference::evaluate_query(kind, query, options, settings).result;
 }
 
 QueryResult query_ccd(Kind kind, const Query& query, const Options& options) {

@@ -77,22 +77,38 @@ static_assert(kSeparationDirectLowest >= kDirectLowest && kSeparationDirectHighe
 
 namespace {
 
-// The stage after the whole-step filters (piecewise_filter.hpp), for a
-// query in the separation filter's direct frame: the pieces for what the
-// separation filter (which left its bounds in `measured`) kept.
-// `separation` as in that frame's units.
-FilterVerdict pieces_stage(Kind kind, const DirectFrame& direct, const SeparationMeasures<double>& measured,
-                           const FilterSettings& settings, double separation, FilterVerdict verdict) {
-  if (verdict.culled()) return verdict;
-  if (settings.separation && settings.pieces > 1) {
-    const SeparationErrorModel error = separation_error(0.0, settings.certified);
-    const SignTest<double> test =
-        sign_test(direct.relative, direct.largest, direct_coefficient_error().floor, settings.certified);
-    verdict.pieces = piecewise_culls(settings.pieces, separation_kind(kind, settings), direct.relative, measured,
-                                     error.relative, error.floor, settings.sign ? &test : nullptr, direct.largest,
-                                     settings.certified, settings.within, separation);
-  }
+// The stage after the whole-step filters (piecewise_filter.hpp), for what
+// they kept, in the separation filter's frame: `relative` and `largest`
+// its differences, `error` its error model, `sign_floor` the sign test's
+// floor there, `separation` in its units.
+FilterVerdict pieces_stage(Kind kind, const Vector3<double> (&relative)[3][2], const double (&largest)[3][2],
+                           const SeparationErrorModel& error, double sign_floor, double separation,
+                           const FilterSettings& settings, FilterVerdict verdict) {
+  if (verdict.culled() || !settings.separation || settings.pieces <= 1 || !error.enabled) return verdict;
+  const Kind distances = separation_kind(kind, settings);
+  const SeparationMeasures<double> measured = separation_measures(distances, relative, error.relative, error.floor);
+  SignTest<double> test{};
+  if (settings.sign) test = sign_test(relative, largest, sign_floor, settings.certified);
+  const PieceVerdicts<bool> pieces =
+      piece_verdicts(settings.pieces, distances, relative, measured, error.relative, error.floor,
+                     settings.sign ? &test : nullptr, largest, settings.certified, settings.within, separation);
+  verdict.pieces = pieces.all_free();
+  for (int j = 0; j < pieces.count; ++j) verdict.free_pieces |= static_cast<std::uint8_t>(pieces.free[j] << j);
   return verdict;
+}
+
+// The stage in the direct frame.
+FilterVerdict pieces_stage(Kind kind, const DirectFrame& direct, const FilterSettings& settings, double separation,
+                           FilterVerdict verdict) {
+  return pieces_stage(kind, direct.relative, direct.largest, separation_error(0.0, settings.certified),
+                      direct_coefficient_error().floor, separation, settings, verdict);
+}
+
+// The stage in the scaled frame (`frame` the differences of `scaled`).
+FilterVerdict pieces_stage(Kind kind, const ScaledQuery& scaled, const ScaledDifferences& frame,
+                           const FilterSettings& settings, double separation, FilterVerdict verdict) {
+  return pieces_stage(kind, frame.relative, frame.largest, separation_error(scaled.absolute_error, settings.certified),
+                      coefficient_floor(scaled.absolute_error), separation, settings, verdict);
 }
 
 // run_filters for a call with separations: the same frames, the filters of
@@ -112,12 +128,11 @@ FilterVerdict run_filters_within(Kind kind, const Query& query, const FilterSett
                                         settings.certified, separation);
   const bool separation_due = settings.separation && !verdict.sign;
   const bool later = direct.within(kSeparationDirectLowest, kSeparationDirectHighest);
-  SeparationMeasures<double> measured{};
   if (separation_due && later) {
     const SeparationErrorModel error = separation_error(0.0, settings.certified);
     verdict.separation = separation_filter_culls_within(separation_kind(kind, settings), direct.relative,
-                                                        error.relative, error.floor, separation, &measured);
-    return pieces_stage(kind, direct, measured, settings, separation, verdict);
+                                                        error.relative, error.floor, separation);
+    return pieces_stage(kind, direct, settings, separation, verdict);
   }
   if (!sign_scaled && !boxes_scaled && !separation_due) return verdict;
   const ScaledQuery scaled = scale_query(kind, query);
@@ -136,7 +151,7 @@ FilterVerdict run_filters_within(Kind kind, const Query& query, const FilterSett
                                                                          frame.relative, error.relative,
                                                                          error.floor, scaled_separation);
   }
-  return verdict;
+  return pieces_stage(kind, scaled, frame, settings, scaled_separation, verdict);
 }
 
 }  // namespace
@@ -162,12 +177,11 @@ FilterVerdict run_filters(Kind kind, const Query& query, const FilterSettings& s
                                      settings.certified, settings.subdivide);
   const bool separation_due = settings.separation && !verdict.sign;
   const bool later = direct.within(kSeparationDirectLowest, kSeparationDirectHighest);
-  SeparationMeasures<double> measured{};
   if (separation_due && later) {
     const SeparationErrorModel error = separation_error(0.0, settings.certified);
     verdict.separation = separation_filter_culls(separation_kind(kind, settings), direct.relative, error.relative,
-                                                 error.floor, &measured);
-    return pieces_stage(kind, direct, measured, settings, 0.0, verdict);
+                                                 error.floor);
+    return pieces_stage(kind, direct, settings, 0.0, verdict);
   }
   if (!sign_scaled && !separation_due) return verdict;
   const ScaledQuery scaled = scale_query(kind, query);
@@ -182,7 +196,7 @@ FilterVerdict run_filters(Kind kind, const Query& query, const FilterSettings& s
         error.enabled &&
         separation_filter_culls(separation_kind(kind, settings), frame.relative, error.relative, error.floor);
   }
-  return verdict;
+  return pieces_stage(kind, scaled, frame, settings, 0.0, verdict);
 }
 
 }  // namespace batchccd::reference

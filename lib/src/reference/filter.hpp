@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 #include "batchccd/lab.hpp"
 #include "batchccd/options.hpp"
@@ -69,6 +70,9 @@ struct FilterVerdict {
   bool separation = false;
   bool pieces = false;
   bool swept_box = false;
+  // Of a query the pieces kept: bit j when piece j of FilterSettings::pieces
+  // is free of contact (0 where the pieces did not run).
+  std::uint8_t free_pieces = 0;
   bool culled() const { return sign || separation || pieces || swept_box; }
 };
 

@@ -104,6 +104,10 @@ class InclusionSolver {
       : kind_(kind), settings_(settings) {
     // The floor first: std::max keeps it against a NaN as well.
     settings_.toi_tolerance = std::max(kSmallestWidth, settings_.toi_tolerance);
+    if (settings_.pieces != 2 && settings_.pieces != 4 && settings_.pieces != 8) {  // not dyadic pieces: none
+      settings_.pieces = 1;
+      settings_.free_pieces = 0;
+    }
     for (int i = 0; i < 3; ++i)
       for (int tau = 0; tau < 2; ++tau) {
         position_[i][tau] = as_vector(query.relative[i][tau]);
@@ -123,7 +127,8 @@ class InclusionSolver {
   // settled as a contact starts no later than the first contact.
   SolverOutcome run() {
     std::vector<Interval>& heap = time_heap();
-    heap.assign(1, Interval{0, 1});
+    if (settings_.free_pieces == 0) heap.assign(1, Interval{0, 1});
+    else push_open_pieces(heap);
     while (!heap.empty()) {
       std::pop_heap(heap.begin(), heap.end(), starts_later);
       Interval time = heap.back();
@@ -211,6 +216,32 @@ class InclusionSolver {
   }
 
  private:
+  // The parts of the step the filters left open (SolverSettings::
+  // free_pieces), each run of open pieces as the fewest aligned dyadic
+  // intervals: halving those keeps every end on the grid, and a run
+  // searched as one interval advances in long steps.
+  void push_open_pieces(std::vector<Interval>& heap) const {
+    heap.clear();
+    const int pieces = settings_.pieces;
+    const auto open = [&](int j) { return j < pieces && !(settings_.free_pieces >> j & 1); };
+    for (int j = 0; j < pieces;) {
+      if (!open(j)) {
+        ++j;
+        continue;
+      }
+      // The longest aligned block from j, all open: j a multiple of its length.
+      int length = 1;
+      while (j % (2 * length) == 0 && j + 2 * length <= pieces) {
+        bool all_open = true;
+        for (int k = j + length; k < j + 2 * length; ++k) all_open = all_open && open(k);
+        if (!all_open) break;
+        length *= 2;
+      }
+      push(heap, Interval{double(j) / pieces, double(j + length) / pieces});
+      j += length;
+    }
+  }
+
   static void split(const Interval& time) {
     push(time_heap(), Interval{time.low, time.middle()});
     push(time_heap(), Interval{time.middle(), time.high});

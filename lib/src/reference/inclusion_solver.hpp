@@ -21,6 +21,10 @@ struct SolverSettings {
   double min_distance = 0;
   // Intervals starting after tmax hold no contact that counts.
   double tmax = 1;
+  // Pieces of the step the filters proved free of contact (FilterVerdict):
+  // bit j for [j / pieces, (j + 1) / pieces], never searched.
+  std::uint8_t free_pieces = 0;
+  int pieces = 1;
 };
 
 struct SolverOutcome {

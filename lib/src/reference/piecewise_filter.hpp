@@ -156,15 +156,28 @@ auto piece_apart(T start, T end, T motion, T pieces_separation) {
          (end * shrink > one_end);
 }
 
-// The filter over pieces: true (per lane) when every piece is free by
-// either test. `measured` from the whole-step separation filter; `sign`:
-// the sign test of the same differences, or null without the sign filter;
-// `within`: a call with separations (the plane bound in place of the
-// signs), `separation` in the frame's units.
+// Which pieces of the step are free of contact, per lane: free[j] for piece
+// j of `count`. A query is culled when every piece is; a survivor's free
+// pieces need no search (the solver skips them, SolverSettings::free_pieces).
+template <class Mask>
+struct PieceVerdicts {
+  Mask free[8];
+  int count = 0;
+  Mask all_free() const {
+    Mask all = free[0];
+    for (int j = 1; j < count; ++j) all = all & free[j];
+    return all;
+  }
+};
+
+// Each piece free by either test. `measured` from the whole-step separation
+// filter; `sign`: the sign test of the same differences, or null without
+// the sign filter; `within`: a call with separations (the plane bound in
+// place of the signs), `separation` in the frame's units.
 template <int pieces, class T>
-auto piecewise_culls(Kind kind, const Vector3<T> (&relative)[3][2], const SeparationMeasures<T>& measured,
-                     T error_relative, T floor, const SignTest<T>* sign, const T (&largest)[3][2],
-                     bool certified, bool within, T separation) {
+auto piece_verdicts(Kind kind, const Vector3<T> (&relative)[3][2], const SeparationMeasures<T>& measured,
+                    T error_relative, T floor, const SignTest<T>* sign, const T (&largest)[3][2], bool certified,
+                    bool within, T separation) {
   using std::sqrt;
   const T shrink(SeparationErrors::shrink), grow(SeparationErrors::grow);
   T distance[pieces + 1];
@@ -173,32 +186,31 @@ auto piecewise_culls(Kind kind, const Vector3<T> (&relative)[3][2], const Separa
   inner_distance_lower_bounds<pieces>(kind, relative, error_relative, floor, distance);
   const T motion = sqrt(measured.displacement2) * grow;
   const T pieces_separation = T(double(pieces)) * separation;
-  using Mask = decltype(motion > motion);
-  Mask apart[pieces];
-  for (int j = 0; j < pieces; ++j) apart[j] = piece_apart(distance[j], distance[j + 1], motion, pieces_separation);
-  Mask culled = apart[0];
-  for (int j = 1; j < pieces; ++j) culled = culled & apart[j];
-  if (sign == nullptr || all_of(culled)) return culled;
+  PieceVerdicts<decltype(motion > motion)> verdicts;
+  verdicts.count = pieces;
+  for (int j = 0; j < pieces; ++j)
+    verdicts.free[j] = piece_apart(distance[j], distance[j + 1], motion, pieces_separation);
+  // Every lane's every piece apart already: the signs would add nothing.
+  if (sign == nullptr || all_of(verdicts.all_free())) return verdicts;
   const T reach = within ? plane_reach(kind, relative, largest, *sign, certified, separation) : T(0);
   const PieceCubics<T, pieces> cubics = piece_cubics<pieces>(*sign);
-  Mask all_free = apart[0] | piece_beyond(cubics, 0, reach);
-  for (int j = 1; j < pieces; ++j) all_free = all_free & (apart[j] | piece_beyond(cubics, j, reach));
-  return all_free;
+  for (int j = 0; j < pieces; ++j) verdicts.free[j] = verdicts.free[j] | piece_beyond(cubics, j, reach);
+  return verdicts;
 }
 
-// piecewise_culls for a count of pieces known at run time (2, 4 or 8).
+// piece_verdicts for a count of pieces known at run time (2, 4 or 8).
 template <class T>
-auto piecewise_culls(int pieces, Kind kind, const Vector3<T> (&relative)[3][2], const SeparationMeasures<T>& measured,
-                     T error_relative, T floor, const SignTest<T>* sign, const T (&largest)[3][2], bool certified,
-                     bool within, T separation) {
+auto piece_verdicts(int pieces, Kind kind, const Vector3<T> (&relative)[3][2], const SeparationMeasures<T>& measured,
+                    T error_relative, T floor, const SignTest<T>* sign, const T (&largest)[3][2], bool certified,
+                    bool within, T separation) {
   if (pieces == 8)
-    return piecewise_culls<8>(kind, relative, measured, error_relative, floor, sign, largest, certified, within,
-                              separation);
+    return piece_verdicts<8>(kind, relative, measured, error_relative, floor, sign, largest, certified, within,
+                             separation);
   if (pieces == 4)
-    return piecewise_culls<4>(kind, relative, measured, error_relative, floor, sign, largest, certified, within,
-                              separation);
-  return piecewise_culls<2>(kind, relative, measured, error_relative, floor, sign, largest, certified, within,
-                            separation);
+    return piece_verdicts<4>(kind, relative, measured, error_relative, floor, sign, largest, certified, within,
+                             separation);
+  return piece_verdicts<2>(kind, relative, measured, error_relative, floor, sign, largest, certified, within,
+                           separation);
 }
 
 }  // namespace batchccd::reference

@@ -30,8 +30,15 @@ double located_toi_width(const Options& options, Decider decider) {
   return decider == Decider::exact ? kExactToiWidth : std::max(0x1p-45, options.toi_tolerance);
 }
 
-SolverSettings solver_settings(const Options& options, Decider decider) {
+// `kept`: what the filters said of the query, whose free pieces the
+// solver skips.
+SolverSettings solver_settings(const Options& options, const lab::Settings& lab, Decider decider,
+                               const FilterVerdict& kept) {
   SolverSettings settings;
+  if (kept.free_pieces != 0) {
+    settings.free_pieces = kept.free_pieces;
+    settings.pieces = filter_settings(options, lab).pieces;
+  }
   settings.certified = decider != Decider::fast;
   settings.need_toi = options.need_toi;
   settings.tolerance = options.tolerance;
@@ -53,13 +60,14 @@ constexpr double kLargerThanEveryDistance = 8;
 // A query with a minimum separation (docs/design.md §11): no cubic and no exact
 // stage; the search settles it or reports a hit it could not rule out.
 void evaluate_within_distance(const ScaledQuery& scaled, Kind kind, const Options& options,
-                              Decider decider, Evaluation& evaluation) {
+                              const lab::Settings& lab, Decider decider, const FilterVerdict& kept,
+                              Evaluation& evaluation) {
   const double separation = to_scaled_length(scaled, options.min_distance);
   if (separation >= kLargerThanEveryDistance) {
     evaluation.result = {true, 0.0, Status::ok};
     return;
   }
-  SolverSettings settings = solver_settings(options, decider);
+  SolverSettings settings = solver_settings(options, lab, decider, kept);
   settings.min_distance = separation;
   // No exact stage to hand over to: the whole budget.
   settings.max_iterations = options.max_iterations;
@@ -157,8 +165,11 @@ bool proves_point_miss(Kind kind, const Query& query, const ScaledQuery& scaled,
   return outcome.certain && !outcome.hit;
 }
 
-Evaluation evaluate(Kind kind, const Query& query, const Options& options, const lab::Settings& lab,
-                    bool filtered) {
+Evaluation evaluate(Kind asked, const Query& query, const Options& options, const lab::Settings& lab,
+                    const FilterVerdict* kept) {
+  // A point kind is searched as the edge-edge query it is stored as, and
+  // filtered with its own distances, as the lanes filter it.
+  const Kind kind = evaluated_kind(asked);
   Evaluation evaluation;
   const Decider decider = decider_of(options, lab);
   if (decider == Decider::cubic) {  // the baseline as it is, without the scaled frame
@@ -167,7 +178,9 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, const
     if (evaluation.result.toi > options.tmax) evaluation.result = {};
     return evaluation;
   }
-  if (!filtered && run_filters(kind, query, filter_settings(options, lab)).culled()) {
+  const FilterVerdict verdict =
+      kept != nullptr ? *kept : run_filters(kind, query, settings_for(asked, filter_settings(options, lab)));
+  if (verdict.culled()) {
     evaluation.culled = true;
     return evaluation;
   }
@@ -181,7 +194,7 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, const
     // Coincident points are within any separation: a hit at 0.
     if (scaled.coincident) evaluation.result = {true, 0.0, Status::ok};
     else if (decider == Decider::fast || !decide_within_by_pairs(kind, query, scaled, options, lab, decider, evaluation))
-      evaluate_within_distance(scaled, kind, options, decider, evaluation);
+      evaluate_within_distance(scaled, kind, options, lab, decider, verdict, evaluation);
     return evaluation;
   }
   if (scaled.coincident) {  // all four points are one point throughout
@@ -196,7 +209,7 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, const
   }
   if (decider != Decider::fast && lab.planar_path && decide_in_plane(kind, query, scaled, options, lab, decider, evaluation))
     return evaluation;
-  SolverOutcome outcome = solve_inclusion(kind, scaled, solver_settings(options, decider));
+  SolverOutcome outcome = solve_inclusion(kind, scaled, solver_settings(options, lab, decider, verdict));
   // A certain contact whose interval straddles tmax may come after it:
   // not certain of what counts.
   if (outcome.certain && outcome.hit && outcome.toi_upper > options.tmax) outcome.certain = false;
@@ -246,10 +259,10 @@ Evaluation evaluate(Kind kind, const Query& query, const Options& options, const
 }  // namespace
 
 Evaluation evaluate_query(Kind kind, const Query& query, const Options& options, const lab::Settings& lab,
-                          bool filtered) {
-  if (!options.time_queries) return evaluate(kind, query, options, lab, filtered);
+                          const FilterVerdict* kept) {
+  if (!options.time_queries) return evaluate(kind, query, options, lab, kept);
   const auto start = std::chrono::steady_clock::now();
-  Evaluation evaluation = evaluate(kind, query, options, lab, filtered);
+  Evaluation evaluation = evaluate(kind, query, options, lab, kept);
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
   evaluation.seconds = elapsed.count();
   return evaluation;

@@ -4,6 +4,7 @@
 #include "batchccd/lab.hpp"
 #include "batchccd/options.hpp"
 #include "batchccd/query.hpp"
+#include "reference/filter.hpp"
 
 namespace batchccd::reference {
 
@@ -26,12 +27,14 @@ struct Evaluation {
 
 // The whole scalar reference path for one query (docs/design.md §3-7): scale,
 // filter, solve, and in exact mode settle what stays uncertain exactly. The
-// SIMD path must agree with it decision for decision.
+// SIMD path must agree with it decision for decision. `kind` may be a point
+// kind (filtered with its own distances, searched as its edge-edge query).
 // `lab`: a baseline in the mode's place, filters switched off (lab.hpp).
-// filtered: the lane filters already kept this query (a batch survivor), so
-// they are not run again.
+// kept: what the lane filters said of a query they kept (a batch survivor):
+// they are not run again, and the pieces of the step they proved free are
+// not searched. Null: the filters run here.
 Evaluation evaluate_query(Kind kind, const Query& query, const Options& options,
-                          const lab::Settings& lab, bool filtered = false);
+                          const lab::Settings& lab, const FilterVerdict* kept = nullptr);
 
 // Adds what the batch counters take from an evaluation beyond hits, culls
 // and the like: exact escalations and the slowest query's time.
