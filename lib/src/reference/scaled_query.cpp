@@ -95,7 +95,7 @@ ScaledQuery scale_query(Kind kind, const Query& query) {
 }
 
 double to_scaled_length(const ScaledQuery& query, double length) {
-  return std::max(std::ldexp(length * query.input_factor, query.exponent), 0x1p-1022);
+  return std::max(times_power_of_two(length * query.input_factor, query.exponent), 0x1p-1022);
 }
 
 }  // namespace batchccd::reference
