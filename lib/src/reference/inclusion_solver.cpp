@@ -649,7 +649,69 @@ class InclusionSolver {
   // Parameters (u, v) of F's smallest value at one time, in plain double:
   // VF F = p - u b - v c over the triangle u, v >= 0, u + v <= 1; EE
   // F = u a1 - b0 - v (b1 - b0) over [0, 1]^2 (positions relative to x1).
+  // Any parameters serve their callers (each step certifies what it takes
+  // from them), so the closest ones are found the cheap way, by the
+  // regions of the triangle or the clamped segment parameters (as in
+  // Ericson, Real-Time Collision Detection, 5.1.5 and 5.1.9); where those
+  // divide by nothing (a degenerate triangle or parallel edges' special
+  // cases), by minimising over the domain's inside and its sides.
   std::array<double, 2> closest_parameters(const std::array<V3, 3>& x) const {
+    const std::array<double, 2> found =
+        kind_ == Kind::vertex_face ? closest_on_triangle(x[0], x[1], x[2]) : closest_on_segments(x[0], x[1], x[2]);
+    if (std::isfinite(found[0]) && std::isfinite(found[1])) return found;
+    return closest_by_minimising(x);
+  }
+
+  // The point p's closest parameters on the triangle (0, b, c), by the
+  // region p projects into; NaN where the triangle is degenerate.
+  static std::array<double, 2> closest_on_triangle(const V3& b, const V3& c, const V3& p) {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    const double d1 = dot(b, p), d2 = dot(c, p);
+    if (d1 <= 0 && d2 <= 0) return {0, 0};  // the corner at the origin
+    const V3 from_b = p - b;
+    const double d3 = dot(b, from_b), d4 = dot(c, from_b);
+    if (d3 >= 0 && d4 <= d3) return {1, 0};  // corner b
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return {d1 / (d1 - d3), 0};  // side 0b
+    const V3 from_c = p - c;
+    const double d5 = dot(b, from_c), d6 = dot(c, from_c);
+    if (d6 >= 0 && d5 <= d6) return {0, 1};  // corner c
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return {0, d2 / (d2 - d6)};  // side 0c
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {  // side bc
+      const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+      return {1 - w, w};
+    }
+    const double sum = va + vb + vc;  // inside: twice the area's square, weighted
+    return sum > 0 ? std::array<double, 2>{vb / sum, vc / sum} : std::array<double, 2>{nan, nan};
+  }
+
+  // The closest parameters of the segments u a (from the origin) and
+  // b0 + v (b1 - b0); a zero-length one is a point.
+  static std::array<double, 2> closest_on_segments(const V3& a, const V3& b0, const V3& b1) {
+    const V3 b = b1 - b0;
+    const double aa = dot(a, a), bb = dot(b, b), b_from_a = -dot(b, b0);
+    if (!(aa > 0) && !(bb > 0)) return {0, 0};
+    if (!(aa > 0)) return {0, std::clamp(b_from_a / bb, 0.0, 1.0)};
+    const double a_from_b = -dot(a, b0);
+    if (!(bb > 0)) return {std::clamp(-a_from_b / aa, 0.0, 1.0), 0};
+    const double ab = dot(a, b), determinant = aa * bb - ab * ab;
+    // The lines' closest u, clamped (parallel: any u, 0), then v for it,
+    // clamped, then u again for that v.
+    double u = determinant > 0 ? std::clamp((ab * b_from_a - a_from_b * bb) / determinant, 0.0, 1.0) : 0.0;
+    double v = (ab * u + b_from_a) / bb;
+    if (v < 0) {
+      v = 0;
+      u = std::clamp(-a_from_b / aa, 0.0, 1.0);
+    } else if (v > 1) {
+      v = 1;
+      u = std::clamp((ab - a_from_b) / aa, 0.0, 1.0);
+    }
+    return {u, v};
+  }
+
+  std::array<double, 2> closest_by_minimising(const std::array<V3, 3>& x) const {
     const std::array<double, 3> at_origin = weights(kind_, 0, 0);
     V3 direction[2];
     for (int d = 0; d < 2; ++d) {
