@@ -82,10 +82,16 @@ ScaledQuery scale_query(Kind kind, const Query& query) {
   }
   // Normalisation: the largest difference in [1, 2).
   const int exponent = -binary_exponent(largest);
-  for (auto& point_pair : scaled.relative)
-    for (Vec3& value : point_pair)
-      value = {times_power_of_two(value[0], exponent), times_power_of_two(value[1], exponent),
-               times_power_of_two(value[2], exponent)};
+  if (exponent <= 1023) {  // one factor for all (times_power_of_two's product)
+    const double factor = power_of_two(exponent);
+    for (auto& point_pair : scaled.relative)
+      for (Vec3& value : point_pair) value *= factor;
+  } else {
+    for (auto& point_pair : scaled.relative)
+      for (Vec3& value : point_pair)
+        value = {times_power_of_two(value[0], exponent), times_power_of_two(value[1], exponent),
+                 times_power_of_two(value[2], exponent)};
+  }
   scaled.input_factor = input_factor;
   scaled.exponent = exponent;
   // Both inputs of a difference may carry input_floor, magnified with it;
