@@ -652,9 +652,9 @@ class InclusionSolver {
   // Any parameters serve their callers (each step certifies what it takes
   // from them), so the closest ones are found the cheap way, by the
   // regions of the triangle or the clamped segment parameters (as in
-  // Ericson, Real-Time Collision Detection, 5.1.5 and 5.1.9); where those
-  // divide by nothing (a degenerate triangle or parallel edges' special
-  // cases), by minimising over the domain's inside and its sides.
+  // Ericson, Real-Time Collision Detection, 5.1.5 and 5.1.9); where the
+  // regions divide by zero (a degenerate triangle), by minimising over the
+  // domain's inside and its sides.
   std::array<double, 2> closest_parameters(const std::array<V3, 3>& x) const {
     const std::array<double, 2> found =
         kind_ == Kind::vertex_face ? closest_on_triangle(x[0], x[1], x[2]) : closest_on_segments(x[0], x[1], x[2]);
@@ -663,7 +663,8 @@ class InclusionSolver {
   }
 
   // The point p's closest parameters on the triangle (0, b, c), by the
-  // region p projects into; NaN where the triangle is degenerate.
+  // region p projects into; NaN where a degenerate triangle leaves a
+  // division by zero.
   static std::array<double, 2> closest_on_triangle(const V3& b, const V3& c, const V3& p) {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
     const double d1 = dot(b, p), d2 = dot(c, p);
@@ -683,7 +684,7 @@ class InclusionSolver {
       const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
       return {1 - w, w};
     }
-    const double sum = va + vb + vc;  // inside: twice the area's square, weighted
+    const double sum = va + vb + vc;  // inside; the sum is |b x c|^2
     return sum > 0 ? std::array<double, 2>{vb / sum, vc / sum} : std::array<double, 2>{nan, nan};
   }
 
