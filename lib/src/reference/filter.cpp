@@ -80,13 +80,14 @@ namespace {
 // The stage after the whole-step filters (piecewise_filter.hpp), for what
 // they kept, in the separation filter's frame: `relative` and `largest`
 // its differences, `error` its error model, `sign_floor` the sign test's
-// floor there, `separation` in its units.
+// floor there, `separation` in its units, `measured` the bounds the
+// separation filter left (it leaves them whenever it keeps the query).
 FilterVerdict pieces_stage(Kind kind, const Vector3<double> (&relative)[3][2], const double (&largest)[3][2],
                            const SeparationErrorModel& error, double sign_floor, double separation,
-                           const FilterSettings& settings, FilterVerdict verdict) {
+                           const SeparationMeasures<double>& measured, const FilterSettings& settings,
+                           FilterVerdict verdict) {
   if (verdict.culled() || !settings.separation || settings.pieces <= 1 || !error.enabled) return verdict;
   const Kind distances = separation_kind(kind, settings);
-  const SeparationMeasures<double> measured = separation_measures(distances, relative, error.relative, error.floor);
   SignTest<double> test{};
   if (settings.sign) test = sign_test(relative, largest, sign_floor, settings.certified);
   const PieceVerdicts<bool> pieces =
@@ -95,20 +96,6 @@ FilterVerdict pieces_stage(Kind kind, const Vector3<double> (&relative)[3][2], c
   verdict.pieces = pieces.all_free();
   for (int j = 0; j < pieces.count; ++j) verdict.free_pieces |= static_cast<std::uint8_t>(pieces.free[j] << j);
   return verdict;
-}
-
-// The stage in the direct frame.
-FilterVerdict pieces_stage(Kind kind, const DirectFrame& direct, const FilterSettings& settings, double separation,
-                           FilterVerdict verdict) {
-  return pieces_stage(kind, direct.relative, direct.largest, separation_error(0.0, settings.certified),
-                      direct_coefficient_error().floor, separation, settings, verdict);
-}
-
-// The stage in the scaled frame (`frame` the differences of `scaled`).
-FilterVerdict pieces_stage(Kind kind, const ScaledQuery& scaled, const ScaledDifferences& frame,
-                           const FilterSettings& settings, double separation, FilterVerdict verdict) {
-  return pieces_stage(kind, frame.relative, frame.largest, separation_error(scaled.absolute_error, settings.certified),
-                      coefficient_floor(scaled.absolute_error), separation, settings, verdict);
 }
 
 // run_filters for a call with separations: the same frames, the filters of
@@ -130,9 +117,11 @@ FilterVerdict run_filters_within(Kind kind, const Query& query, const FilterSett
   const bool later = direct.within(kSeparationDirectLowest, kSeparationDirectHighest);
   if (separation_due && later) {
     const SeparationErrorModel error = separation_error(0.0, settings.certified);
+    SeparationMeasures<double> measured{};
     verdict.separation = separation_filter_culls_within(separation_kind(kind, settings), direct.relative,
-                                                        error.relative, error.floor, separation);
-    return pieces_stage(kind, direct, settings, separation, verdict);
+                                                        error.relative, error.floor, separation, &measured);
+    return pieces_stage(kind, direct.relative, direct.largest, error, direct_coefficient_error().floor, separation,
+                        measured, settings, verdict);
   }
   if (!sign_scaled && !boxes_scaled && !separation_due) return verdict;
   const ScaledQuery scaled = scale_query(kind, query);
@@ -147,11 +136,14 @@ FilterVerdict run_filters_within(Kind kind, const Query& query, const FilterSett
                                         settings.certified, scaled_separation);
   if (settings.separation && !verdict.sign) {
     const SeparationErrorModel error = separation_error(scaled.absolute_error, settings.certified);
+    SeparationMeasures<double> measured{};
     verdict.separation = error.enabled && separation_filter_culls_within(separation_kind(kind, settings),
-                                                                         frame.relative, error.relative,
-                                                                         error.floor, scaled_separation);
+                                                                         frame.relative, error.relative, error.floor,
+                                                                         scaled_separation, &measured);
+    return pieces_stage(kind, frame.relative, frame.largest, error, coefficient_floor(scaled.absolute_error),
+                        scaled_separation, measured, settings, verdict);
   }
-  return pieces_stage(kind, scaled, frame, settings, scaled_separation, verdict);
+  return verdict;
 }
 
 }  // namespace
@@ -179,9 +171,11 @@ FilterVerdict run_filters(Kind kind, const Query& query, const FilterSettings& s
   const bool later = direct.within(kSeparationDirectLowest, kSeparationDirectHighest);
   if (separation_due && later) {
     const SeparationErrorModel error = separation_error(0.0, settings.certified);
+    SeparationMeasures<double> measured{};
     verdict.separation = separation_filter_culls(separation_kind(kind, settings), direct.relative, error.relative,
-                                                 error.floor);
-    return pieces_stage(kind, direct, settings, 0.0, verdict);
+                                                 error.floor, &measured);
+    return pieces_stage(kind, direct.relative, direct.largest, error, direct_coefficient_error().floor, 0.0, measured,
+                        settings, verdict);
   }
   if (!sign_scaled && !separation_due) return verdict;
   const ScaledQuery scaled = scale_query(kind, query);
@@ -192,11 +186,13 @@ FilterVerdict run_filters(Kind kind, const Query& query, const FilterSettings& s
                                      settings.certified, settings.subdivide);
   if (settings.separation && !verdict.sign) {
     const SeparationErrorModel error = separation_error(scaled.absolute_error, settings.certified);
-    verdict.separation =
-        error.enabled &&
-        separation_filter_culls(separation_kind(kind, settings), frame.relative, error.relative, error.floor);
+    SeparationMeasures<double> measured{};
+    verdict.separation = error.enabled && separation_filter_culls(separation_kind(kind, settings), frame.relative,
+                                                                  error.relative, error.floor, &measured);
+    return pieces_stage(kind, frame.relative, frame.largest, error, coefficient_floor(scaled.absolute_error), 0.0,
+                        measured, settings, verdict);
   }
-  return pieces_stage(kind, scaled, frame, settings, 0.0, verdict);
+  return verdict;
 }
 
 }  // namespace batchccd::reference
