@@ -664,15 +664,15 @@ TEST(PointSearch, AgreesWithExactLabelsAndTheGenericSearch) {
 // Nearly planar point-edge motion without a separation: the search over
 // (t, u, v) leaves many misses uncertain, which went to the exact stage;
 // the pairs' search proves them (counted: no escalation).
-TEST(PointSearch, ProvesNearlyPlanarMissesWithoutTheExactStage) {
-  std::mt19937_64 random(59);
+// As in the 2D point lists of the planar benchmark lifted to 3D: a long
+// segment, a point near it, motions of a few percent of the segment,
+// heights within 1 % (drawn at t0 and t1 alike).
+std::vector<Query> nearly_planar_point_edges(unsigned seed, int count) {
+  std::mt19937_64 random(seed);
   std::uniform_int_distribution<int> coordinate(-(1 << 16), 1 << 16);
   const auto dyadic = [&](int bits) { return std::ldexp(static_cast<double>(coordinate(random)), -16 - bits); };
-  // As in the 2D point lists of the planar benchmark lifted to 3D: a long
-  // segment, a point near it, motions of a few percent of the segment,
-  // heights within 1 % (drawn at t0 and t1 alike).
   std::vector<Query> queries;
-  for (int i = 0; i < 2000; ++i) {
+  for (int i = 0; i < count; ++i) {
     std::vector<Vec3> start, end;
     for (int k = 0; k < 3; ++k) start.emplace_back(dyadic(0), dyadic(0), std::fabs(dyadic(6)));
     start[0].head<2>() = 0.5 * (start[1] + start[2]).head<2>() + Vec3(dyadic(4), dyadic(4), 0).head<2>();
@@ -680,6 +680,11 @@ TEST(PointSearch, ProvesNearlyPlanarMissesWithoutTheExactStage) {
       end.push_back(Vec3(start[k].x() + dyadic(5), start[k].y() + dyadic(5), std::fabs(dyadic(6))));
     queries.push_back(make_query(Kind::vertex_edge, start, end));
   }
+  return queries;
+}
+
+TEST(PointSearch, ProvesNearlyPlanarMissesWithoutTheExactStage) {
+  const std::vector<Query> queries = nearly_planar_point_edges(59, 2000);
   lab::Settings generic;
   generic.point_search = false;
   for (Mode mode : {Mode::conservative, Mode::exact}) {
@@ -692,6 +697,37 @@ TEST(PointSearch, ProvesNearlyPlanarMissesWithoutTheExactStage) {
     EXPECT_LE(with_pairs.counters.exact_escalations, without.counters.hits) << to_string(mode);
     EXPECT_EQ(with_pairs.counters.hits, without.counters.hits);
     for (std::size_t i = 0; i < queries.size(); ++i) EXPECT_EQ(with_pairs.results[i].hit, without.results[i].hit);
+  }
+}
+
+// At a separation the search over (t, u, v) comes first, with a small
+// budget of boxes: conservative advancement settles nearly every query
+// without any. Where exact mode needs more (nearly planar motion, hits
+// within 2^-40 of the separation to certify), the pairs' search settles
+// the query: with a budget the box search alone runs out of on many, it
+// leaves nearly none undecided, and every decision is the box search's
+// with the whole budget.
+TEST(PointSearch, SettlesWhatTheFirstSearchLeavesAtASeparation) {
+  const std::vector<Query> queries = nearly_planar_point_edges(67, 2000);
+  lab::Settings generic;
+  generic.point_search = false;
+  for (Mode mode : {Mode::conservative, Mode::exact}) {
+    Options options;
+    options.mode = mode;
+    options.min_distance = 0x1p-8;
+    BatchResult whole_budget;
+    lab::batch_ccd(Kind::vertex_edge, queries, {}, options, generic, whole_budget);
+    options.max_iterations = 4;
+    BatchResult with_pairs, without;
+    lab::batch_ccd(Kind::vertex_edge, queries, {}, options, {}, with_pairs);
+    lab::batch_ccd(Kind::vertex_edge, queries, {}, options, generic, without);
+    EXPECT_EQ(whole_budget.counters.undecided, 0) << to_string(mode);
+    if (mode == Mode::exact) {
+      EXPECT_GT(without.counters.undecided, 50);  // the premise: 118
+      EXPECT_LT(with_pairs.counters.undecided * 20, without.counters.undecided);  // 1
+    }
+    EXPECT_GT(with_pairs.counters.hits, 100) << to_string(mode);
+    for (std::size_t i = 0; i < queries.size(); ++i) EXPECT_EQ(with_pairs.results[i].hit, whole_budget.results[i].hit);
   }
 }
 

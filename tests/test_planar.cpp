@@ -330,7 +330,8 @@ TEST(PlanarWithin, AgreesWithExactLabelsAndTheGenericSearch) {
             }
           }
           hits += exact.hit;
-          // The planar search itself: certain, and a hit's bracket ends
+          // The planar search itself (the answer where conservative
+          // advancement is uncertain): certain, a hit's bracket ending
           // where the distance is exactly within D.
           const reference::ScaledQuery scaled = reference::scale_query(reference::evaluated_kind(kind), query);
           const int axis = *exact::exact_plane_axis(query);
@@ -341,7 +342,7 @@ TEST(PlanarWithin, AgreesWithExactLabelsAndTheGenericSearch) {
           if (outcome.certain && outcome.hit) {
             const testing::Rational d(separation);
             EXPECT_LE(testing::squared_distance_at(reference::evaluated_kind(kind), query, outcome.toi_upper), d * d);
-            EXPECT_EQ(outcome.toi, exact.toi);
+            EXPECT_NEAR(outcome.toi, exact.toi, 2 * kExactToiWidth);
           }
         }
       }

@@ -57,30 +57,6 @@ SolverSettings solver_settings(const Options& options, const lab::Settings& lab,
 // of x2..x4 below 2 in magnitude, x1 at the origin).
 constexpr double kLargerThanEveryDistance = 8;
 
-// A query with a minimum separation (docs/design.md §11): no cubic and no exact
-// stage; the search settles it or reports a hit it could not rule out.
-void evaluate_within_distance(const ScaledQuery& scaled, Kind kind, const Options& options,
-                              const lab::Settings& lab, Decider decider, const FilterVerdict& kept,
-                              Evaluation& evaluation) {
-  const double separation = to_scaled_length(scaled, options.min_distance);
-  if (separation >= kLargerThanEveryDistance) {
-    evaluation.result = {true, 0.0, Status::ok};
-    return;
-  }
-  SolverSettings settings = solver_settings(options, lab, decider, kept);
-  settings.min_distance = separation;
-  // No exact stage to hand over to: the whole budget.
-  settings.max_iterations = options.max_iterations;
-  const bool exact = decider == Decider::exact;
-  if (exact) {  // the band it may report: 2^-40 of the query's size; the TOI to 2^-40
-    settings.tolerance = kExactToiWidth;
-    settings.toi_tolerance = kExactToiWidth;
-  }
-  const SolverOutcome outcome = solve_inclusion(kind, scaled, settings);
-  evaluation.undecided = outcome.undecided || (exact && outcome.hit && !outcome.certain);
-  if (outcome.hit) evaluation.result = {true, outcome.toi, Status::ok};
-}
-
 // Exact arithmetic decides: floating-point expansions, then integers. Where
 // the expansions cannot, `proves_miss` (a certain test cheaper than the
 // integers, though not than expansions that decide) may settle a miss first.
@@ -122,25 +98,62 @@ bool is_point_shape(PlanarShape shape) {
 }
 
 // With a separation, where the closest pair is always a vertex and a
-// segment (docs/design.md §5a): motion in an axis plane, decided there, and
-// a point against a segment or a point in 3D. True when that search is
-// certain (the answer is in `evaluation`); false for the search over
-// (t, u, v).
-bool decide_within_by_pairs(Kind kind, const Query& query, const ScaledQuery& scaled, const Options& options,
-                            const lab::Settings& lab, Decider decider, Evaluation& evaluation) {
-  const PlanarShape shape = planar_shape(kind, query);
-  const double separation = to_scaled_length(scaled, options.min_distance);
+// segment (docs/design.md §5a): motion in the axis plane `axis`, decided
+// there, or else a point against a segment or a point in 3D. True when that
+// search is certain (the answer is in `evaluation`).
+bool decide_within_by_pairs(PlanarShape shape, std::optional<int> axis, const ScaledQuery& scaled, double separation,
+                            const Options& options, Decider decider, Evaluation& evaluation) {
   const double toi_width = located_toi_width(options, decider);
-  PlanarOutcome outcome;
-  // Axis planes only (exact_plane_axis's tilted planes do not keep distances).
-  const std::optional<int> axis = lab.planar_path ? exact::shared_axis(query) : std::nullopt;
-  if (axis)
-    outcome = solve_planar_within(shape, scaled, *axis, separation, options.tmax, toi_width);
-  else if (lab.point_search && is_point_shape(shape))
-    outcome = solve_point_within(shape, scaled, separation, options.tmax, toi_width);
+  const PlanarOutcome outcome = axis ? solve_planar_within(shape, scaled, *axis, separation, options.tmax, toi_width)
+                                     : solve_point_within(shape, scaled, separation, options.tmax, toi_width);
   if (!outcome.certain) return false;
   if (outcome.hit) evaluation.result = {true, outcome.toi, Status::ok};
   return true;
+}
+
+// Parameter boxes the first search with a separation gets where the pairs'
+// search may follow: conservative advancement needs none, and where boxes
+// are needed the pairs' search is the cheaper.
+constexpr std::int64_t kFirstSearchBudget = 16;
+
+// A query with a minimum separation (docs/design.md §11): no cubic and no
+// exact stage. Conservative advancement settles nearly every query in a few
+// steps, planar motion and points included; where the search over
+// (t, u, v) gets lost instead (nearly planar motion), the pairs' search
+// settles most, so the first search gets a small budget. What neither
+// settles, the whole search reports: a hit it could not rule out.
+void evaluate_within_distance(const Query& query, const ScaledQuery& scaled, Kind kind, const Options& options,
+                              const lab::Settings& lab, Decider decider, const FilterVerdict& kept,
+                              Evaluation& evaluation) {
+  const double separation = to_scaled_length(scaled, options.min_distance);
+  if (separation >= kLargerThanEveryDistance) {
+    evaluation.result = {true, 0.0, Status::ok};
+    return;
+  }
+  SolverSettings settings = solver_settings(options, lab, decider, kept);
+  settings.min_distance = separation;
+  // No exact stage to hand over to: the whole budget.
+  settings.max_iterations = options.max_iterations;
+  const bool exact = decider == Decider::exact;
+  if (exact) {  // the band it may report: 2^-40 of the query's size; the TOI to 2^-40
+    settings.tolerance = kExactToiWidth;
+    settings.toi_tolerance = kExactToiWidth;
+  }
+  const auto report = [&](const SolverOutcome& outcome) {
+    evaluation.undecided = outcome.undecided || (exact && outcome.hit && !outcome.certain);
+    if (outcome.hit) evaluation.result = {true, outcome.toi, Status::ok};
+  };
+  const PlanarShape shape = planar_shape(kind, query);
+  // Axis planes only (exact_plane_axis's tilted planes do not keep distances).
+  const std::optional<int> axis = lab.planar_path ? exact::shared_axis(query) : std::nullopt;
+  if (decider != Decider::fast && (axis || (lab.point_search && is_point_shape(shape)))) {
+    SolverSettings first = settings;
+    first.max_iterations = std::min(settings.max_iterations, kFirstSearchBudget);
+    const SolverOutcome outcome = solve_inclusion(kind, scaled, first);
+    if (outcome.certain) return report(outcome);
+    if (decide_within_by_pairs(shape, axis, scaled, separation, options, decider, evaluation)) return;
+  }
+  report(solve_inclusion(kind, scaled, settings));
 }
 
 // Whether the query certainly misses in its projection along the axis its
@@ -193,8 +206,7 @@ Evaluation evaluate(Kind asked, const Query& query, const Options& options, cons
   if (options.min_distance > 0) {
     // Coincident points are within any separation: a hit at 0.
     if (scaled.coincident) evaluation.result = {true, 0.0, Status::ok};
-    else if (decider == Decider::fast || !decide_within_by_pairs(kind, query, scaled, options, lab, decider, evaluation))
-      evaluate_within_distance(scaled, kind, options, lab, decider, verdict, evaluation);
+    else evaluate_within_distance(query, scaled, kind, options, lab, decider, verdict, evaluation);
     return evaluation;
   }
   if (scaled.coincident) {  // all four points are one point throughout
