@@ -134,11 +134,11 @@ class InclusionSolver {
       Interval time = heap.back();
       heap.pop_back();
       if (time.low > settings_.tmax) break;  // the earliest left: nothing later counts
-      const Endpoints ends = endpoints(time);
       if (settings_.min_distance > 0) {
-        if (const std::optional<SolverOutcome> outcome = search_within_distance(time, ends)) return *outcome;
+        if (const std::optional<SolverOutcome> outcome = search_within_distance(time)) return *outcome;
         continue;
       }
+      const Endpoints ends = endpoints(time);
       const CubicSigns cubic = cubic_signs(ends);
       if (cubic.root_free) continue;
       const bool wide = time.width() > kWideInterval;
@@ -250,21 +250,24 @@ class InclusionSolver {
   // One time interval of the search with a minimum separation: its outcome,
   // or nothing when it was excluded or split. A contact found in an interval
   // not yet toi_tolerance wide splits it: the first contact may lie earlier.
-  std::optional<SolverOutcome> search_within_distance(const Interval& time, const Endpoints& ends) {
+  std::optional<SolverOutcome> search_within_distance(const Interval& time) {
     // Conservative advancement first: where it gets to a contact it
     // settles the query, and the times it passes need no search. Its first
     // step along the closest direction at the start nearly always does
     // what the one at the middle would; only an interval it does not start
-    // (its start already advanced past) takes the middle's.
-    if (time.low < advanced_ && separated_along_closest(time, ends)) return std::nullopt;
-    if (time.low >= advanced_ && advance(time.low, std::min(time.high, settings_.tmax)))
+    // (its start already advanced past) takes the middle's, below.
+    const bool started = time.low < advanced_;
+    if (!started && advance(time.low, std::min(time.high, settings_.tmax)))
       return SolverOutcome{true, advanced_, false, settings_.certified};
     // Every time up to advanced_ is free of contact, tmax included: nothing
     // after it counts, and searching the intervals that straddle it (down
     // to a width near tmax, log2(1 / tmax) halvings with a shrinking
     // window's small tmax) would only find what does not count.
     if (advanced_ >= settings_.tmax) return SolverOutcome{false, 0, false, settings_.certified};
-    if (time.high <= advanced_ || apart_over(ends)) return std::nullopt;
+    if (time.high <= advanced_) return std::nullopt;
+    // Where advancement stopped short: the interval's ends, for the tests below.
+    const Endpoints ends = endpoints(time);
+    if ((started && separated_along_closest(time, ends)) || apart_over(ends)) return std::nullopt;
     const bool settled = time.width() <= settings_.toi_tolerance || !settings_.need_toi;
     // A wide interval gets one box: where conservative advancement stalled,
     // its boxes seldom settle anything before time is split.

@@ -111,17 +111,18 @@ bool decide_within_by_pairs(PlanarShape shape, std::optional<int> axis, const Sc
   return true;
 }
 
-// Parameter boxes the first search with a separation gets where the pairs'
-// search may follow: conservative advancement needs none, and where boxes
-// are needed the pairs' search is the cheaper.
+// Parameter boxes the first search with a separation gets: conservative
+// advancement needs none, and where boxes are needed (nearly planar
+// motion) the pairs' search is the cheaper.
 constexpr std::int64_t kFirstSearchBudget = 16;
 
 // A query with a minimum separation (docs/design.md §11): no cubic and no
 // exact stage. Conservative advancement settles nearly every query in a few
-// steps, planar motion and points included; where the search over
-// (t, u, v) gets lost instead (nearly planar motion), the pairs' search
-// settles most, so the first search gets a small budget. What neither
-// settles, the whole search reports: a hit it could not rule out.
+// steps, planar motion and points included, so it comes first, with a
+// small budget of boxes; what it leaves uncertain, the pairs' search may
+// settle (an axis plane's motion, a point), else the search with the whole
+// budget where the first ran out of it. What none settles is reported as
+// a hit it could not rule out.
 void evaluate_within_distance(const Query& query, const ScaledQuery& scaled, Kind kind, const Options& options,
                               const lab::Settings& lab, Decider decider, const FilterVerdict& kept,
                               Evaluation& evaluation) {
@@ -139,21 +140,22 @@ void evaluate_within_distance(const Query& query, const ScaledQuery& scaled, Kin
     settings.tolerance = kExactToiWidth;
     settings.toi_tolerance = kExactToiWidth;
   }
-  const auto report = [&](const SolverOutcome& outcome) {
-    evaluation.undecided = outcome.undecided || (exact && outcome.hit && !outcome.certain);
-    if (outcome.hit) evaluation.result = {true, outcome.toi, Status::ok};
-  };
-  const PlanarShape shape = planar_shape(kind, query);
-  // Axis planes only (exact_plane_axis's tilted planes do not keep distances).
-  const std::optional<int> axis = lab.planar_path ? exact::shared_axis(query) : std::nullopt;
-  if (decider != Decider::fast && (axis || (lab.point_search && is_point_shape(shape)))) {
-    SolverSettings first = settings;
-    first.max_iterations = std::min(settings.max_iterations, kFirstSearchBudget);
-    const SolverOutcome outcome = solve_inclusion(kind, scaled, first);
-    if (outcome.certain) return report(outcome);
-    if (decide_within_by_pairs(shape, axis, scaled, separation, options, decider, evaluation)) return;
+  SolverSettings first = settings;
+  first.max_iterations = std::min(settings.max_iterations, kFirstSearchBudget);
+  SolverOutcome outcome = solve_inclusion(kind, scaled, first);
+  if (!outcome.certain && decider != Decider::fast) {
+    const PlanarShape shape = planar_shape(kind, query);
+    // Axis planes only (exact_plane_axis's tilted planes do not keep distances).
+    const std::optional<int> axis = lab.planar_path ? exact::shared_axis(query) : std::nullopt;
+    if ((axis || (lab.point_search && is_point_shape(shape))) &&
+        decide_within_by_pairs(shape, axis, scaled, separation, options, decider, evaluation))
+      return;
   }
-  report(solve_inclusion(kind, scaled, settings));
+  // Within its budget the first search is the whole one.
+  if (outcome.undecided && first.max_iterations < settings.max_iterations)
+    outcome = solve_inclusion(kind, scaled, settings);
+  evaluation.undecided = outcome.undecided || (exact && outcome.hit && !outcome.certain);
+  if (outcome.hit) evaluation.result = {true, outcome.toi, Status::ok};
 }
 
 // Whether the query certainly misses in its projection along the axis its
