@@ -611,7 +611,7 @@ class InclusionSolver {
         const double gap = (distance - settings_.min_distance * SeparationErrors::grow) * shrink;
         if (!(gap > 0)) {
           advanced_ = std::max(advanced_, t);
-          return witnessed(endpoints(Interval{t, t}), closest.parameters);
+          return witnessed(t, closest);
         }
         // Whole grid steps: t is on the grid, so the sum is exact. Without
         // relative motion (the fast baseline's m may be 0) the whole way.
@@ -637,16 +637,22 @@ class InclusionSolver {
   // (on the 2^-45 grid): F at their closest parameters, found in plain
   // double and put on the same grid (any parameters of the primitives bound
   // the distance from above), evaluated with error bounds.
-  bool witnessed_at(double t) const {
-    const Endpoints at = endpoints(Interval{t, t});
-    return witnessed(at, closest_parameters(at.position[0]));
-  }
-  // The same at the time of `at`, whose closest parameters are known.
-  bool witnessed(const Endpoints& at, const std::array<double, 2>& closest) const {
-    const auto [u, v] = closest;
-    const double u_grid = down_to_grid(u), v_grid = down_to_grid(v);
-    const Image image = evaluate(at, ParameterBox{{u_grid, u_grid}, {v_grid, v_grid}});
-    return image.centre_distance <= witness_distance_;
+  bool witnessed_at(double t) const { return witnessed(t, closest_at(t)); }
+  // The same where the closest pair at t is known: F at that one point of
+  // the primitives, bounded as evaluate bounds a box's centre (here all
+  // eight corners are that point, their sum 8 F exactly).
+  bool witnessed(double t, const ClosestAt& closest) const {
+    const auto [u, v] = closest.parameters;
+    std::array<double, 3> w = weights(kind_, down_to_grid(u), down_to_grid(v));
+    const V3 value = weighted_sum(w, closest.position);
+    for (double& x : w) x = std::fabs(x);
+    std::array<V3, 3> magnitude;
+    for (int i = 0; i < 3; ++i) magnitude[i] = interpolate(magnitude_[i][0], magnitude_[i][1], t);
+    const V3 value_magnitude = weighted_sum(w, magnitude);
+    const double error = function_error_.relative * std::max({value_magnitude.x, value_magnitude.y, value_magnitude.z}) +
+                         function_error_.floor;
+    const double largest = std::max({std::fabs(value.x), std::fabs(value.y), std::fabs(value.z)});
+    return centre_distance_bound(V3{8 * value.x, 8 * value.y, 8 * value.z}, largest, error) <= witness_distance_;
   }
 
   // Parameters (u, v) of F's smallest value at one time, in plain double:
