@@ -50,6 +50,19 @@ double step_length(double t, double reach, double fraction) {
   return down_to_grid(std::min(1.0, t + (reach - t) * fraction) - t);
 }
 
+// Where f, positive and falling at t (value h, derivative slope there),
+// reaches 0: up to four Newton steps from t in plain double, kept within
+// [t, 1]. f(s, slope) returns f(s) and sets slope to f'(s).
+template <class Function>
+double newton_reach(const Function& f, double t, double h, double slope) {
+  double reach = t;
+  for (int iteration = 0; iteration < 4 && slope < 0 && std::isfinite(h); ++iteration) {
+    reach = std::clamp(reach - h / slope, t, 1.0);
+    if (iteration < 3) h = f(reach, slope);
+  }
+  return reach;
+}
+
 struct Interval {
   double low, high;
   double width() const { return high - low; }
@@ -477,17 +490,10 @@ class InclusionSolver {
       return std::fabs(v) - separation * length;
     };
     double slope = 0;
-    if (!(h_at(t, slope) > 0)) return t;
-    double reach = t;
-    if (!(slope < 0)) {
-      reach = 1;  // moving apart at t: the whole step, if nothing turns it
-    } else {
-      for (int iteration = 0; iteration < 4; ++iteration) {
-        const double h = h_at(reach, slope);
-        if (!(slope < 0) || !std::isfinite(h)) break;
-        reach = std::clamp(reach - h / slope, t, 1.0);
-      }
-    }
+    const double h = h_at(t, slope);
+    if (!(h > 0)) return t;
+    // Moving apart at t: the whole step, if nothing turns it.
+    const double reach = slope < 0 ? newton_reach(h_at, t, h, slope) : 1;
     // Close to a contact the estimate is nearly exact: all but a sliver of
     // it first. Far from the reach the coefficients' hull is loose where
     // the plane turns: 15/16 of it, then shorter intervals (halved up to
@@ -532,16 +538,11 @@ class InclusionSolver {
       return length - separation;
     };
     double slope = 0;
-    if (!(distance_at(closest, slope) > 0)) return t;
-    double reach = 1;  // moving apart at t: the whole step, if nothing turns it
-    if (slope < 0) {
-      reach = t;
-      for (int iteration = 0; iteration < 4; ++iteration) {
-        const double h = distance_at(closest_at(reach), slope);
-        if (!(slope < 0) || !std::isfinite(h)) break;
-        reach = std::clamp(reach - h / slope, t, 1.0);
-      }
-    }
+    const double h = distance_at(closest, slope);
+    if (!(h > 0)) return t;
+    const auto distance_from_closest = [&](double s, double& slope_at) { return distance_at(closest_at(s), slope_at); };
+    // Moving apart at t: the whole step, if nothing turns it.
+    const double reach = slope < 0 ? newton_reach(distance_from_closest, t, h, slope) : 1;
     const auto length_of = [&](double fraction) { return step_length(t, reach, fraction); };
     double length = length_of(kReachFractions[0]);
     for (int attempt = 0; attempt < 3 && length > 0; ++attempt) {
