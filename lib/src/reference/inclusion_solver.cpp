@@ -470,7 +470,7 @@ class InclusionSolver {
   // the interval (plane_distance_culls), or a half, quarter or eighth of it,
   // or t is returned. Certified up to its end whatever `until`, as
   // cleared_along_closest is.
-  double cleared_by_plane(double t, double until) const {
+  double cleared_by_plane(double t, double until, const ClosestAt& closest) const {
     if (down_to_grid(t) != t) return t;  // off the grid: interpolation not bounded
     // a, b, c at time 0 and their rates: VF x21, x31, x41; EE x21, x43, x31.
     const bool vertex_face = kind_ == Kind::vertex_face;
@@ -499,12 +499,12 @@ class InclusionSolver {
     // the plane turns: 15/16 of it, then shorter intervals (halved up to
     // three times) fit it closer.
     const auto length_of = [&](double fraction) { return step_length(t, reach, fraction); };
+    const auto apart_for = [&](double length) { return plane_apart(closest.position, positions_at(t + length)); };
     const double nearly_all = length_of(kReachFractions[0]);
     double length = length_of(kReachFractions[1]);
-    if (nearly_all > length && plane_apart(endpoints(Interval{t, t + nearly_all})))
-      return std::min(t + nearly_all, until);
+    if (nearly_all > length && apart_for(nearly_all)) return std::min(t + nearly_all, until);
     for (int attempt = 0; attempt < 4 && length > 0; ++attempt, length = down_to_grid(length * 0.5))
-      if (plane_apart(endpoints(Interval{t, t + length}))) return std::min(t + length, until);
+      if (apart_for(length)) return std::min(t + length, until);
     return t;
   }
 
@@ -591,7 +591,7 @@ class InclusionSolver {
       // then t itself holds no contact).
       const ClosestAt closest = closest_at(t);
       double cleared = cleared_along_closest(t, until, closest);
-      if (cleared < until && closest.interior(kind_)) cleared = std::max(cleared, cleared_by_plane(t, until));
+      if (cleared < until && closest.interior(kind_)) cleared = std::max(cleared, cleared_by_plane(t, until, closest));
       // Many steps already, each at least half the one before (towards a
       // contact they shrink fast): the closest pair may lie on an edge or a
       // corner that turns, which neither step above follows.
@@ -785,14 +785,16 @@ class InclusionSolver {
   // The sign test with a separation over the interval, its coefficients
   // from interpolated positions, the normal's length bounded by its
   // Euclidean norm (sign_filter.hpp).
-  bool plane_apart(const Endpoints& ends) const {
+  bool plane_apart(const Endpoints& ends) const { return plane_apart(ends.position[0], ends.position[1]); }
+  // The same from the positions at the interval's start and end.
+  bool plane_apart(const std::array<V3, 3>& start, const std::array<V3, 3>& end) const {
     Vector3<double> relative[3][2];
     double largest[3][2];
-    for (int i = 0; i < 3; ++i)
-      for (int end = 0; end < 2; ++end) {
-        relative[i][end] = ends.position[end][i];
-        largest[i][end] = largest_magnitude(relative[i][end]);
-      }
+    for (int i = 0; i < 3; ++i) {
+      relative[i][0] = start[i];
+      relative[i][1] = end[i];
+      for (int e = 0; e < 2; ++e) largest[i][e] = largest_magnitude(relative[i][e]);
+    }
     return plane_distance_culls(kind_, relative, largest, cubic_error_.floor, settings_.certified,
                                 settings_.min_distance, cubic_error_.relative, true);
   }

@@ -33,10 +33,9 @@ double times_power_of_two(double x, int exponent) {
   return x * power_of_two(exponent);
 }
 
-double largest_magnitude(const Query& query) {
-  double largest = 0;
-  for (const Vec3& point : query.points) largest = std::max(largest, point.cwiseAbs().maxCoeff());
-  return largest;
+// The largest magnitude of v's coordinates, and of `largest`.
+double largest_of(const Vec3& v, double largest) {
+  return std::max({largest, std::fabs(v[0]), std::fabs(v[1]), std::fabs(v[2])});
 }
 
 }  // namespace
@@ -49,11 +48,17 @@ bool all_finite(const Query& query) {
 
 ScaledQuery scale_query(Kind kind, const Query& query) {
   ScaledQuery scaled;
-  if (!all_finite(query)) {
+  // One pass for both: the largest magnitude is finite when every
+  // coordinate is (std::max passes over a NaN, hence the sum).
+  double input_magnitude = 0, sum = 0;
+  for (const Vec3& point : query.points) {
+    input_magnitude = largest_of(point, input_magnitude);
+    sum += point[0] + point[1] + point[2];
+  }
+  if (!std::isfinite(sum) && !all_finite(query)) {
     scaled.finite = false;
     return scaled;
   }
-  const double input_magnitude = largest_magnitude(query);
   if (input_magnitude == 0) {
     scaled.coincident = true;
     return scaled;
@@ -73,7 +78,7 @@ ScaledQuery scale_query(Kind kind, const Query& query) {
     for (int i = 0; i < 3; ++i) {
       const Vec3 point = query.points[point_index(kind, i + 2) + 4 * tau] * input_factor;
       scaled.relative[i][tau] = point - origin;
-      largest = std::max(largest, scaled.relative[i][tau].cwiseAbs().maxCoeff());
+      largest = largest_of(scaled.relative[i][tau], largest);
     }
   }
   if (largest == 0) {
