@@ -625,6 +625,15 @@ class InclusionSolver {
           advanced_ = std::max(advanced_, next);
           return true;
         }
+      } else if (step_length * (1 - kReachFractions[0]) < settings_.toi_tolerance && next < until) {
+        // A step that went nearly all the way to a contact left less than
+        // toi_tolerance of the way: a witness that far past `next` ends
+        // the search a step early (a failed one costs a fraction of a step).
+        const double ahead = std::min(next + down_to_grid(settings_.toi_tolerance), until);
+        if (witnessed_at(ahead)) {
+          advanced_ = std::max(advanced_, next);
+          return true;
+        }
       }
       if (next <= t) break;
       previous_step = next - t;
