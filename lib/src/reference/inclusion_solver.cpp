@@ -431,16 +431,15 @@ class InclusionSolver {
       at[i + 1] = dot(*n, closest.position[i]);
       rate[i + 1] = dot(*n, position_[i][1]) - dot(*n, position_[i][0]);
     }
-    // Points 0..3 are x1..x4: VF upper {3}, lower {0, 1, 2}; EE upper {0, 1}, lower {2, 3}.
+    // Points 0..3 are x1..x4, pairs (upper, lower): VF upper {3}, lower
+    // {0, 1, 2} (its last pair repeated); EE upper {0, 1}, lower {2, 3}.
+    static constexpr int kPairs[2][4][2] = {{{3, 0}, {3, 1}, {3, 2}, {3, 2}}, {{0, 2}, {0, 3}, {1, 2}, {1, 3}}};
     double reach = std::numeric_limits<double>::infinity();
-    for (int upper = 0; upper < 4; ++upper)
-      for (int lower = 0; lower < 4; ++lower) {
-        const bool pair = vertex_face ? upper == 3 && lower < 3 : upper < 2 && lower >= 2;
-        if (!pair) continue;
-        const double gap = at[upper] - at[lower] - separation, closing = rate[lower] - rate[upper];
-        if (!(gap > 0)) return t;
-        if (closing > 0) reach = std::min(reach, t + gap / closing);
-      }
+    for (const auto& [upper, lower] : kPairs[vertex_face ? 0 : 1]) {
+      const double gap = at[upper] - at[lower] - separation, closing = rate[lower] - rate[upper];
+      if (!(gap > 0)) return t;
+      if (closing > 0) reach = std::min(reach, t + gap / closing);
+    }
     // Nearly all the way to the plain-double reach, else 1/16 short of it
     // for separated_at's margins (the gap, concave, is certified at both
     // ends; t's above). Certified up to `end` whatever `until`, which only
