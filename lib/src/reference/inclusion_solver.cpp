@@ -35,6 +35,10 @@ constexpr std::int64_t kWideDistanceBudget = 1;  // with a minimum separation
 // within a hair of it), else 1/16 short of it.
 constexpr double kReachFractions[] = {1 - 0x1p-10, 0.9375};
 
+// How near its estimated reach (in time) the plane step tries the first
+// of kReachFractions, all but a sliver of the way.
+constexpr double kNearReach = 0x1p-4;
+
 // The step of conservative advancement from which it also tries a
 // direction that turns with the closest pair (cleared_turning), when the
 // steps shrink by less than half each: before it, the other steps nearly
@@ -468,8 +472,9 @@ class InclusionSolver {
   // test with a separation, with the normal's Euclidean length, certifies
   // the interval (plane_distance_culls), or a half, quarter or eighth of it,
   // or t is returned. Certified up to its end whatever `until`, as
-  // cleared_along_closest is.
-  double cleared_by_plane(double t, double until, const ClosestAt& closest) const {
+  // cleared_along_closest is. `sliver_failed`: the approach's state (see
+  // below), false at its first step.
+  double cleared_by_plane(double t, double until, const ClosestAt& closest, bool& sliver_failed) const {
     if (down_to_grid(t) != t) return t;  // off the grid: interpolation not bounded
     // a, b, c at time 0 and their rates: VF x21, x31, x41; EE x21, x43, x31.
     const bool vertex_face = kind_ == Kind::vertex_face;
@@ -494,14 +499,19 @@ class InclusionSolver {
     // Moving apart at t: the whole step, if nothing turns it.
     const double reach = slope < 0 ? newton_reach(h_at, t, h, slope) : 1;
     // Close to a contact the estimate is nearly exact: all but a sliver of
-    // it first. Far from the reach the coefficients' hull is loose where
-    // the plane turns: 15/16 of it, then shorter intervals (halved up to
-    // three times) fit it closer.
+    // it first, within kNearReach of it. Farther, the coefficients' hull is
+    // loose where the plane turns: 15/16 of it, then shorter intervals
+    // (halved up to three times) fit it closer. Where the sliver failed
+    // once that close, h meets the separation too shallowly for the hull
+    // and it fails at every later step of the approach: not tried again.
     const auto length_of = [&](double fraction) { return step_length(t, reach, fraction); };
     const auto apart_for = [&](double length) { return plane_apart(closest.position, positions_at(t + length)); };
     const double nearly_all = length_of(kReachFractions[0]);
     double length = length_of(kReachFractions[1]);
-    if (nearly_all > length && apart_for(nearly_all)) return std::min(t + nearly_all, until);
+    if (!sliver_failed && nearly_all > length && reach - t <= kNearReach) {
+      if (apart_for(nearly_all)) return std::min(t + nearly_all, until);
+      sliver_failed = true;
+    }
     for (int attempt = 0; attempt < 4 && length > 0; ++attempt, length = down_to_grid(length * 0.5))
       if (apart_for(length)) return std::min(t + length, until);
     return t;
@@ -585,12 +595,13 @@ class InclusionSolver {
     if (!error.enabled) return false;
     constexpr double shrink = SeparationErrors::shrink;
     double t = from, previous_step = 0;
+    bool sliver_failed = false;  // cleared_by_plane's state over this approach
     for (int step = 0; step < kSteps && t < until; ++step) {
       // Along the closest direction a step often clears all the way (and
       // then t itself holds no contact).
       const ClosestAt closest = closest_at(t);
       double cleared = cleared_along_closest(t, until, closest);
-      if (cleared < until && closest.interior(kind_)) cleared = std::max(cleared, cleared_by_plane(t, until, closest));
+      if (cleared < until && closest.interior(kind_)) cleared = std::max(cleared, cleared_by_plane(t, until, closest, sliver_failed));
       // Many steps already, each at least half the one before (towards a
       // contact they shrink fast): the closest pair may lie on an edge or a
       // corner that turns, which neither step above follows.
