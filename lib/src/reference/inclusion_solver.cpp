@@ -601,7 +601,8 @@ class InclusionSolver {
       // then t itself holds no contact).
       const ClosestAt closest = closest_at(t);
       double cleared = cleared_along_closest(t, until, closest);
-      if (cleared < until && closest.interior(kind_)) cleared = std::max(cleared, cleared_by_plane(t, until, closest, sliver_failed));
+      if (cleared < until && closest.interior(kind_))
+        cleared = std::max(cleared, cleared_by_plane(t, until, closest, sliver_failed));
       // Many steps already, each at least half the one before (towards a
       // contact they shrink fast): the closest pair may lie on an edge or a
       // corner that turns, which neither step above follows.
@@ -669,8 +670,7 @@ class InclusionSolver {
     std::array<V3, 3> magnitude;
     for (int i = 0; i < 3; ++i) magnitude[i] = interpolate(magnitude_[i][0], magnitude_[i][1], t);
     const V3 value_magnitude = weighted_sum(w, magnitude);
-    const double error = function_error_.relative * std::max({value_magnitude.x, value_magnitude.y, value_magnitude.z}) +
-                         function_error_.floor;
+    const double error = function_error_at(std::max({value_magnitude.x, value_magnitude.y, value_magnitude.z}));
     const double largest = std::max({std::fabs(value.x), std::fabs(value.y), std::fabs(value.z)});
     return centre_distance_bound(V3{8 * value.x, 8 * value.y, 8 * value.z}, largest, error) <= witness_distance_;
   }
@@ -967,14 +967,20 @@ class InclusionSolver {
             sign(0) * sign(3) < 0, halved_cubic(cubic)};
   }
 
+  // How far F computed from interpolated positions may be from the exact
+  // value, where F with its weights' magnitudes on the positions'
+  // magnitudes is at most `magnitude` (collision_function_error).
+  double function_error_at(double magnitude) const {
+    return function_error_.relative * magnitude + function_error_.floor;
+  }
+
   // Each position component as a ball holding all its values over the
   // interval: between its two (certified) end values.
   PositionBalls position_balls(const Endpoints& e) const {
     PositionBalls balls;
     for (int i = 0; i < 3; ++i) {
       auto ball = [&](double low, double high, double magnitude_low, double magnitude_high) {
-        const double error = function_error_.relative * std::max(magnitude_low, magnitude_high) +
-                             function_error_.floor;
+        const double error = function_error_at(std::max(magnitude_low, magnitude_high));
         const double middle = 0.5 * (low + high);
         return Ball{middle, ball_detail::grown(0.5 * std::fabs(high - low) + error, middle)};
       };
@@ -1052,7 +1058,7 @@ class InclusionSolver {
           const V3 magnitude = weighted_sum(w, ends.magnitude[ti]);
           largest_magnitude = std::max({largest_magnitude, magnitude.x, magnitude.y, magnitude.z});
         }
-    const double error = function_error_.relative * largest_magnitude + function_error_.floor;
+    const double error = function_error_at(largest_magnitude);
 
     Image image;
     for (int axis = 0; axis < 3; ++axis) {
